@@ -1,0 +1,41 @@
+// The subcommands of the `thalassa` program. Each returns the process exit status:
+// 0 done, 2 invalid input, 1 failure at run time (DESIGN section 5).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace thalassa::cli {
+
+constexpr int kExitOk = 0;
+constexpr int kExitRuntimeFailure = 1;
+constexpr int kExitInvalidInput = 2;
+
+struct RenderArgs {
+  std::string scene;  // empty: the embedded default scene
+  std::string exr = "thalassa.exr";
+  std::optional<std::string> png;  // default: the EXR's path with .png
+  bool no_png = false;
+  std::vector<std::string> sets;
+  std::string stats;
+  std::string backend;  // empty: the default headless backend
+  int repeat = 1;
+  bool float_exr = false;
+};
+
+struct InfoArgs {
+  std::string backend;
+};
+
+void add_render_command(CLI::App& app, RenderArgs& args);
+void add_info_command(CLI::App& app, InfoArgs& args);
+int run_render(const RenderArgs& args);
+int run_info(const InfoArgs& args);
+
+// Prints "thalassa: <message>" on stderr.
+void print_error(const std::string& message);
+
+}  // namespace thalassa::cli

@@ -1,0 +1,153 @@
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "thalassa/thalassa.hpp"
+
+namespace thalassa::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool has_extension(const std::string& path, const std::string& extension) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == extension;
+}
+
+// Output paths are checked before any work, so that a typo costs no render. Returns an error
+// message or "".
+std::string check_output(const std::string& option, const std::string& path,
+                         const std::string& extension) {
+  if (!extension.empty() && !has_extension(path, extension))
+    return option + " " + path + ": expected a file name ending in " + extension;
+  const fs::path folder = fs::path(path).parent_path();
+  std::error_code ec;
+  if (!folder.empty() && !fs::is_directory(folder, ec))
+    return option + " " + path + ": folder " + folder.string() + " does not exist";
+  return "";
+}
+
+std::string format_number(double value) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.9g", value);
+  return text;
+}
+
+std::string stats_json(const RenderStats& stats) {
+  nlohmann::ordered_json json;
+  json["backend"] = stats.backend;
+  json["renderer"] = stats.renderer;
+  json["width"] = stats.width;
+  json["height"] = stats.height;
+  json["mode"] = stats.mode;
+  json["frames"] = stats.frames;
+  json["frame_ms"] = stats.frame_ms;
+  json["timing"] = stats.timing;
+  json["passes"] = nlohmann::ordered_json::object();
+  for (const auto& [name, ms] : stats.passes) json["passes"][name] = ms;
+  json["resolved_waves"] = stats.resolved_waves;
+  json["built"] = stats.built;
+  return json.dump(2) + "\n";
+}
+
+}  // namespace
+
+void print_error(const std::string& message) {
+  std::fprintf(stderr, "thalassa: %s\n", message.c_str());
+}
+
+void add_render_command(CLI::App& app, RenderArgs& args) {
+  CLI::App* render = app.add_subcommand(
+      "render", "Render a scene (the embedded default scene if none is given) to EXR and PNG");
+  render->add_option("scene", args.scene, "Scene file (JSON, see docs/scene.md)");
+  render->add_option("-o,--output", args.exr, "Linear HDR output (.exr)")->capture_default_str();
+  render->add_option("--png", args.png, "Tone-mapped output (.png); default: the EXR's name");
+  render->add_flag("--no-png", args.no_png, "Write no PNG");
+  render->add_option("--set", args.sets, "Override a scene key: --set camera.height=100")
+      ->allow_extra_args(false);
+  render->add_option("--stats", args.stats, "Write frame statistics as JSON");
+  render->add_option("--backend", args.backend, "egl, osmesa or glfw (default: egl, else osmesa)")
+      ->check(CLI::IsMember({"egl", "osmesa", "glfw"}));
+  render->add_option("--repeat", args.repeat, "Frames to render (statistics are medians)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  render->add_flag("--float", args.float_exr, "Write a 32-bit float EXR (default: half)");
+}
+
+int run_render(const RenderArgs& args) {
+  // 1. Everything the user typed is checked before any GL work.
+  Scene scene;
+  std::string merged;
+  try {
+    SceneBuilder builder;
+    if (!args.scene.empty()) builder.load_file(args.scene);
+    for (const auto& assignment : args.sets) builder.set(assignment);
+    if (args.float_exr) builder.set("image.exr_type=float");
+    scene = builder.build();
+    merged = builder.merged_json();
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+  const std::string png = args.no_png ? std::string()
+                          : args.png  ? *args.png
+                                      : fs::path(args.exr).replace_extension(".png").string();
+  for (const std::string& problem :
+       {check_output("-o", args.exr, ".exr"), png.empty() ? "" : check_output("--png", png, ".png"),
+        args.stats.empty() ? "" : check_output("--stats", args.stats, "")}) {
+    if (!problem.empty()) {
+      print_error(problem);
+      return kExitInvalidInput;
+    }
+  }
+
+  // 2. A context, the renderer, the frames.
+  ContextOptions options;
+  options.width = scene.image.width;
+  options.height = scene.image.height;
+  std::unique_ptr<GlContext> context = args.backend.empty()
+                                           ? create_headless_context(options)
+                                           : create_context(*parse_backend(args.backend), options);
+  Renderer renderer(*context, scene);
+  for (int i = 0; i < args.repeat; ++i) {
+    renderer.render();
+    if (context->backend() == Backend::Glfw) {
+      int width = 0, height = 0;
+      context->default_framebuffer_size(width, height);
+      renderer.present(0, width, height);
+      context->present();
+    }
+  }
+  const Image image = renderer.image();
+  const RenderStats stats = renderer.stats();
+
+  // 3. Outputs, each written whole or not at all.
+  const auto& c = scene.camera;
+  Metadata metadata = {
+      {"thalassa:version", THALASSA_VERSION_STRING},
+      {"thalassa:scene", merged},
+      {"thalassa:camera", "lat=" + format_number(c.lat) + " lon=" + format_number(c.lon) +
+                              " height=" + format_number(c.height) + " heading=" +
+                              format_number(c.heading) + " pitch=" + format_number(c.pitch) +
+                              " roll=" + format_number(c.roll) + " fov_y=" + format_number(c.fov_y)},
+      {"thalassa:units", "spectral radiance, W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm"},
+      {"thalassa:backend", stats.backend},
+      {"thalassa:renderer", stats.renderer},
+      {"thalassa:mode", stats.mode},
+      {"thalassa:frame_ms", format_number(stats.frame_ms)},
+  };
+  std::string passes;
+  for (const auto& [name, ms] : stats.passes)
+    passes += (passes.empty() ? "" : " ") + name + "=" + format_number(ms);
+  metadata.emplace_back("thalassa:passes_ms", passes);
+  write_exr(args.exr, image, scene.image.exr_type, metadata);
+  if (!png.empty()) write_png(png, image, scene.image.exposure, {{"Software", "thalassa"}});
+  if (!args.stats.empty()) write_text_atomically(args.stats, stats_json(stats));
+  return kExitOk;
+}
+
+}  // namespace thalassa::cli

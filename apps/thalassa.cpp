@@ -1,0 +1,34 @@
+// thalassa — the command-line program (DESIGN section 5).
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "thalassa/version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace thalassa::cli;
+  CLI::App app{"thalassa " THALASSA_VERSION_STRING
+               ": renders a planet's ocean and atmosphere, headless or in a window"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", THALASSA_VERSION_STRING);
+  RenderArgs render_args;
+  InfoArgs info_args;
+  add_render_command(app, render_args);
+  add_info_command(app, info_args);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& success) {
+    return app.exit(success);  // --help, --version
+  } catch (const CLI::ParseError& error) {
+    app.exit(error);  // prints the message
+    return kExitInvalidInput;
+  }
+  try {
+    if (app.got_subcommand("render")) return run_render(render_args);
+    if (app.got_subcommand("info")) return run_info(info_args);
+  } catch (const std::exception& error) {
+    print_error(error.what());
+    return kExitRuntimeFailure;
+  }
+  return kExitInvalidInput;
+}

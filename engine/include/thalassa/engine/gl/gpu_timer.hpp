@@ -1,0 +1,50 @@
+// thalassa — time of each pass of a frame on the GPU.
+//
+// Two clocks are read at every mark: a GL timestamp query (ARB_timer_query) and the CPU's
+// steady clock after glFinish() (which returns only when every command so far has completed).
+// The queries are the GPU's own clock and the figure to trust on a hardware driver; Mesa's
+// llvmpipe stamps a query when the command is queued, before its rasterisation threads run, so
+// its query times miss most of the work. There the finish-to-finish wall time is the true cost.
+// The glFinish at each mark serialises passes, which a timed run accepts.
+#pragma once
+
+#include "thalassa/engine/gl/objects.hpp"
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace thalassa::gl {
+
+enum class TimingSource {
+  TimestampQuery,    // GL_TIMESTAMP differences
+  FinishWallClock,   // steady clock between glFinish() marks
+};
+
+struct PassTime {
+  std::string name;
+  double query_ms = 0;  // from GL timestamp queries
+  double wall_ms = 0;   // from the steady clock between finished marks
+};
+
+class GpuTimer {
+ public:
+  // The source that `frame_ms` of the statistics uses for this renderer string: the wall clock
+  // for Mesa's software rasterisers (llvmpipe, softpipe), the queries otherwise.
+  static TimingSource source_for_renderer(const std::string& gl_renderer);
+
+  // Starts a frame: the queue is finished and both clocks are read.
+  void begin_frame();
+  // Marks the end of the pass called `name` (the pass ran since the previous mark).
+  void end_pass(const std::string& name);
+  // Waits for the queries; the passes in order. `frame` gets the whole frame's times.
+  std::vector<PassTime> resolve(PassTime& frame);
+
+ private:
+  void mark();
+  std::vector<Query> queries_;  // one per mark: frame start, then one per pass
+  std::vector<std::chrono::steady_clock::time_point> wall_;
+  std::vector<std::string> names_;
+};
+
+}  // namespace thalassa::gl

@@ -1,0 +1,74 @@
+// thalassa — the scene graph: nodes created from the scene file, drawn in order into the HDR
+// target, each pass timed on the GPU (DESIGN section 3).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "thalassa/engine/gl/gpu_timer.hpp"
+#include "thalassa/engine/gl/hdr_target.hpp"
+#include "thalassa/engine/gl/objects.hpp"
+#include "thalassa/engine/gl/shader_library.hpp"
+
+namespace thalassa::gl {
+
+// What every pass of one frame sees, computed on the CPU in double. Directions are unit vectors
+// in the local east-north-up frame tangent at the camera's nadir (x east, y north, z up).
+struct FrameInputs {
+  int width = 1;   // pixels
+  int height = 1;  // pixels
+  glm::dvec3 camera_right{1, 0, 0};
+  glm::dvec3 camera_up{0, 0, 1};
+  glm::dvec3 camera_forward{0, 1, 0};
+  double tan_half_fov_y = 0.41421356237309503;  // tan(fov_y / 2), fov_y = 45 degrees
+  double camera_height = 4.0;                   // m above the sea surface (z = 0)
+  glm::dvec3 sun_direction{0, 0, 1};            // toward the sun
+  double time = 0.0;                            // s
+};
+
+// The per-frame uniform block shared by all passes: shaders/common/frame.glsl declares the
+// same std140 layout at binding point kFrameBinding.
+struct FrameUniforms {
+  float camera_right[4];    // xyz; w = tan(fov_y / 2) * aspect
+  float camera_up[4];       // xyz; w = tan(fov_y / 2)
+  float camera_forward[4];  // xyz; w = camera height above the sea, m
+  float sun_direction[4];   // xyz; w unused
+  float viewport[4];        // width, height, 1 / width, 1 / height (pixels)
+};
+static_assert(sizeof(FrameUniforms) == 5 * 16, "std140 layout of shaders/common/frame.glsl");
+constexpr GLuint kFrameBinding = 0;
+
+FrameUniforms make_frame_uniforms(const FrameInputs& inputs);
+
+class Node {
+ public:
+  virtual ~Node() = default;
+  // The pass name in statistics ("sky", "ocean").
+  virtual std::string name() const = 0;
+  // What this node caused to be created ("atmosphere.analytic_sky", ...), for `built`.
+  virtual std::vector<std::string> built() const = 0;
+  // Draws into the bound HDR target; the frame uniform block is bound at kFrameBinding.
+  virtual void draw(const FrameInputs& inputs, ShaderLibrary& shaders) = 0;
+};
+
+class SceneGraph {
+ public:
+  SceneGraph();
+  void add(std::unique_ptr<Node> node);
+  const std::vector<std::unique_ptr<Node>>& nodes() const { return nodes_; }
+
+  // Draws every node in order into `target`, timing each as a pass of `timer`.
+  void render(const FrameInputs& inputs, HdrTarget& target, ShaderLibrary& shaders,
+              GpuTimer& timer);
+
+ private:
+  std::vector<std::unique_ptr<Node>> nodes_;
+  Buffer frame_uniforms_;
+  VertexArray empty_vao_;  // full-screen passes draw a triangle from gl_VertexID
+};
+
+}  // namespace thalassa::gl

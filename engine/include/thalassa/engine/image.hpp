@@ -1,0 +1,52 @@
+// thalassa — HDR images and their files: EXR (linear radiance, half or float, with metadata)
+// and PNG (tone-mapped), both through OpenImageIO, both written atomically.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "thalassa/engine/scene.hpp"
+
+namespace thalassa {
+
+// An RGBA float image, rows top first. Colour is linear spectral radiance
+// (W m^-2 sr^-1 nm^-1 at 680, 550, 440 nm); alpha is 1 where something was drawn.
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgba;  // width * height * 4
+
+  float* pixel(int x, int y) { return &rgba[(static_cast<std::size_t>(y) * width + x) * 4]; }
+  const float* pixel(int x, int y) const {
+    return &rgba[(static_cast<std::size_t>(y) * width + x) * 4];
+  }
+};
+
+// Reading or writing an image failed. The message names the file.
+class ImageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The PNG's tone mapping, per channel: v = 1 - exp(-exposure * L) (an exponential shoulder that
+// never clips: Bruneton's 2017 demo uses the same), then the sRGB transfer function (IEC
+// 61966-2-1), then rounding to 8 bits. Non-finite or negative radiance maps to 0.
+double tone_map(double radiance, double exposure);
+double srgb_encode(double linear);  // [0, 1] -> [0, 1]
+
+using Metadata = std::vector<std::pair<std::string, std::string>>;
+
+// Writes an OpenEXR file of RGBA (half or float) with each metadata entry as a string
+// attribute ("thalassa:scene", "thalassa:camera", ...). The file appears complete or not at
+// all: it is written to a temporary name in the same folder, then renamed.
+void write_exr(const std::string& path, const Image& image, ExrPixelType type,
+               const Metadata& metadata = {});
+// Writes an 8-bit sRGB PNG tone-mapped with tone_map(), atomically.
+void write_png(const std::string& path, const Image& image, double exposure,
+               const Metadata& metadata = {});
+// Reads any image OpenImageIO can read as RGBA float, rows top first (for tests and tools).
+Image read_image(const std::string& path, Metadata* metadata = nullptr);
+
+}  // namespace thalassa

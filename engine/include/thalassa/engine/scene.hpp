@@ -1,0 +1,138 @@
+// thalassa — scene description: the typed form of a scene file (DESIGN section 5).
+//
+// A scene is built in three steps: start from the defaults embedded in the program (or a file,
+// which is laid over them), apply `--set key.path=value` overrides, then validate everything
+// into a typed `Scene`. Every error is a `SceneError` whose message is one line naming the
+// source (file name or "--set"), the key path and what was expected; the command-line program
+// turns it into exit status 2. Units in the struct are those of the file (degrees, metres,
+// seconds); conversion to radians happens where the values are used.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace thalassa {
+
+// Invalid scene input. what() is the complete one-line message
+//   "<source>: <key.path>: expected <what>, got <what was found>", e.g.
+//   "scene.json: camera.height: expected a number in [-11000, 1e9] (m), got \"high\"".
+// <source> is the path given to load_text/load_file, or "--set" for overrides. Errors about the
+// whole input have no key path: "scene.json:3:14: expected valid JSON, got ..." (line:column of
+// a syntax error), "missing.json: expected a scene file, got no such file".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class ExrPixelType { Half, Float };
+enum class PlanetShape { Wgs84, Sphere };
+enum class WaveSpectrum { PiersonMoskowitz, OmegaMinus2 };
+
+struct ImageSettings {
+  int width = 960;                         // pixels, [1, 16384]
+  int height = 540;                        // pixels, [1, 16384]
+  double exposure = 10.0;                  // 1 / (W m^-2 sr^-1 nm^-1), (0, 1e6]; docs/scene.md
+  ExrPixelType exr_type = ExrPixelType::Half;  // "half" or "float"
+};
+
+struct CameraSettings {
+  double lat = 20.0;        // geodetic latitude, degrees, [-90, 90]
+  double lon = -150.0;      // longitude, degrees, [-180, 180]
+  double height = 4.0;      // metres above the ellipsoid (sea level), [-11000, 1e9]
+  double heading = 180.0;   // degrees clockwise from north, [-360, 360]
+  double pitch = -5.0;      // degrees above the horizontal, [-90, 90]
+  double roll = 0.0;        // degrees, [-180, 180]
+  double fov_y = 45.0;      // vertical field of view, degrees, [0.01, 179]
+};
+
+struct SunSettings {
+  double zenith = 60.0;     // degrees from the zenith at the camera's nadir, [0, 180]
+  double azimuth = 180.0;   // degrees clockwise from north, [-360, 360]
+  // ISO 8601 UTC time ("2026-06-21T18:30:00Z"). When present in the input, zenith and azimuth
+  // are computed from it for the camera's nadir and the file must not also give them.
+  std::optional<std::string> utc;
+};
+
+struct PlanetSettings {
+  PlanetShape shape = PlanetShape::Wgs84;
+  double radius = 6371000.0;  // metres, sphere only, [1e3, 1e8]
+};
+
+struct OceanSettings {
+  double wind_speed = 10.0;      // m/s at 19.5 m above the sea, [0, 60]
+  double wind_direction = 180.0; // degrees clockwise from north the wind blows FROM, [-360, 360]
+  WaveSpectrum spectrum = WaveSpectrum::PiersonMoskowitz;  // "pierson-moskowitz" or "omega-2"
+  int waves = 60;                // number of trochoids, [1, 4096]
+  double lambda_min = 0.02;      // shortest wavelength, m, [1e-3, 1e4], <= lambda_max
+  double lambda_max = 30.0;      // longest wavelength, m, [1e-3, 1e4]
+  std::uint32_t seed = 1;        // random seed for directions and phases, [0, 4294967295]
+};
+
+struct SkySettings {
+  std::string model = "atmosphere";  // the sky model; "atmosphere" is the only one so far
+  std::string exr;                   // path of an equirectangular HDR sky; empty = use `model`
+};
+
+struct Scene {
+  ImageSettings image;
+  CameraSettings camera;
+  SunSettings sun;
+  double time = 0.0;  // simulation time, seconds, [0, 1e12]
+  PlanetSettings planet;
+  OceanSettings ocean;
+  SkySettings sky;
+};
+
+// Builds a Scene from defaults, an optional file and overrides, with the checks of DESIGN
+// section 4 ("Bad input"). Errors throw SceneError.
+class SceneBuilder {
+ public:
+  SceneBuilder();  // starts from the embedded defaults
+  ~SceneBuilder();
+  SceneBuilder(SceneBuilder&&) noexcept;
+  SceneBuilder& operator=(SceneBuilder&&) noexcept;
+
+  // Lays a JSON document over the current values. `source` names it in messages (a path).
+  void load_text(std::string_view json_text, std::string_view source);
+  // Reads and lays a file over the current values; a missing or unreadable file is a SceneError.
+  void load_file(const std::string& path);
+  // "key.path=value": value is parsed as JSON when it is valid JSON (numbers, true, "str"),
+  // otherwise taken as a bare string (so `--set ocean.spectrum=omega-2` works unquoted).
+  // Messages name the source "--set". Like load_text, a failed call changes nothing.
+  void set(std::string_view assignment);
+
+  // Checks the constraints between keys (ocean.lambda_min <= ocean.lambda_max; sun.utc not given
+  // together with sun.zenith or sun.azimuth, where the built-in defaults do not count as given)
+  // and returns the typed scene, with sun.zenith/azimuth computed from sun.utc when it is set.
+  // Each key's own checks already ran in load_text/load_file/set.
+  Scene build() const;
+  // The merged document (defaults + file + overrides) as canonical JSON text, for metadata:
+  // compact, keys sorted, numbers as doubles and integers as integers. With sun.utc it leaves
+  // out sun.zenith and sun.azimuth, so that the text is itself a valid scene of the same Scene.
+  std::string merged_json() const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+// The embedded default scene's JSON text (what `render` uses with no scene file).
+std::string_view default_scene_json();
+
+// One documented scene key: used to validate, to generate docs/scene.md and to test that the
+// documentation lists every key.
+struct SceneKeyInfo {
+  std::string path;         // "camera.height"
+  std::string type;         // "number", "integer", "string", "enum"
+  std::string unit;         // "m", "degrees", "" ...
+  std::string range;        // human-readable valid range, e.g. "[-11000, 1e9]" or "half, float"
+  std::string default_value;// canonical JSON text ("4.0", "\"half\""); "(none)" if no default
+  std::string doc;          // one sentence
+};
+const std::vector<SceneKeyInfo>& scene_keys();
+
+}  // namespace thalassa

@@ -1,0 +1,57 @@
+#include "thalassa/engine/gl/objects.hpp"
+
+#include <string>
+
+namespace thalassa::gl {
+
+void check_error(const char* where) {
+  std::string errors;
+  for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) {
+    switch (error) {
+      case GL_INVALID_ENUM: errors += " GL_INVALID_ENUM"; break;
+      case GL_INVALID_VALUE: errors += " GL_INVALID_VALUE"; break;
+      case GL_INVALID_OPERATION: errors += " GL_INVALID_OPERATION"; break;
+      case GL_INVALID_FRAMEBUFFER_OPERATION: errors += " GL_INVALID_FRAMEBUFFER_OPERATION"; break;
+      case GL_OUT_OF_MEMORY: errors += " GL_OUT_OF_MEMORY"; break;
+      default: errors += " GL error " + std::to_string(error);
+    }
+    if (errors.size() > 400) break;  // a lost context can report errors forever
+  }
+  if (!errors.empty()) throw GlError(std::string(where) + ":" + errors);
+}
+
+void delete_buffer(GLuint name) { glDeleteBuffers(1, &name); }
+void delete_texture(GLuint name) { glDeleteTextures(1, &name); }
+void delete_framebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }
+void delete_vertex_array(GLuint name) { glDeleteVertexArrays(1, &name); }
+void delete_query(GLuint name) { glDeleteQueries(1, &name); }
+void delete_program(GLuint name) { glDeleteProgram(name); }
+void delete_shader(GLuint name) { glDeleteShader(name); }
+
+Buffer make_buffer() {
+  GLuint name = 0;
+  glCreateBuffers(1, &name);
+  return Buffer(name);
+}
+Texture make_texture(GLenum target) {
+  GLuint name = 0;
+  glCreateTextures(target, 1, &name);
+  return Texture(name);
+}
+Framebuffer make_framebuffer() {
+  GLuint name = 0;
+  glCreateFramebuffers(1, &name);
+  return Framebuffer(name);
+}
+VertexArray make_vertex_array() {
+  GLuint name = 0;
+  glCreateVertexArrays(1, &name);
+  return VertexArray(name);
+}
+Query make_query(GLenum target) {
+  GLuint name = 0;
+  glCreateQueries(target, 1, &name);
+  return Query(name);
+}
+
+}  // namespace thalassa::gl

@@ -1,0 +1,53 @@
+#include "thalassa/engine/gl/scene_graph.hpp"
+
+namespace thalassa::gl {
+namespace {
+
+void store(float out[4], const glm::dvec3& v, double w) {
+  out[0] = static_cast<float>(v.x);
+  out[1] = static_cast<float>(v.y);
+  out[2] = static_cast<float>(v.z);
+  out[3] = static_cast<float>(w);
+}
+
+}  // namespace
+
+FrameUniforms make_frame_uniforms(const FrameInputs& inputs) {
+  FrameUniforms u{};
+  const double aspect = double(inputs.width) / double(inputs.height);
+  store(u.camera_right, inputs.camera_right, inputs.tan_half_fov_y * aspect);
+  store(u.camera_up, inputs.camera_up, inputs.tan_half_fov_y);
+  store(u.camera_forward, inputs.camera_forward, inputs.camera_height);
+  store(u.sun_direction, inputs.sun_direction, 0.0);
+  u.viewport[0] = static_cast<float>(inputs.width);
+  u.viewport[1] = static_cast<float>(inputs.height);
+  u.viewport[2] = static_cast<float>(1.0 / inputs.width);
+  u.viewport[3] = static_cast<float>(1.0 / inputs.height);
+  return u;
+}
+
+SceneGraph::SceneGraph() : frame_uniforms_(make_buffer()), empty_vao_(make_vertex_array()) {
+  glNamedBufferStorage(frame_uniforms_.get(), sizeof(FrameUniforms), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT);
+}
+
+void SceneGraph::add(std::unique_ptr<Node> node) { nodes_.push_back(std::move(node)); }
+
+void SceneGraph::render(const FrameInputs& inputs, HdrTarget& target, ShaderLibrary& shaders,
+                        GpuTimer& timer) {
+  const FrameUniforms uniforms = make_frame_uniforms(inputs);
+  glNamedBufferSubData(frame_uniforms_.get(), 0, sizeof(uniforms), &uniforms);
+  timer.begin_frame();
+  target.begin();
+  glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frame_uniforms_.get());
+  glBindVertexArray(empty_vao_.get());
+  timer.end_pass("clear");
+  for (const auto& node : nodes_) {
+    node->draw(inputs, shaders);
+    timer.end_pass(node->name());
+  }
+  glBindVertexArray(0);
+  check_error("scene graph render");
+}
+
+}  // namespace thalassa::gl

@@ -1,0 +1,71 @@
+// thalassa — renders a scene: the entry point for applications and the command-line program.
+//
+// A Renderer turns a validated Scene into a graph of nodes (sky, sea, ...), creating only what
+// the scene needs, and draws frames into a linear HDR framebuffer in the GL context that is
+// current: one from create_context()/create_headless_context(), or the host application's own
+// (attach_host_context()). This header exposes no GL types.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "thalassa/engine/context.hpp"
+#include "thalassa/engine/image.hpp"
+#include "thalassa/engine/scene.hpp"
+
+namespace thalassa {
+
+// Camera heights at and above this are rendered in `space` mode (DESIGN section 1), in metres.
+constexpr double kSpaceModeHeight = 20000.0;
+
+struct RenderStats {
+  std::string backend;   // "egl", "osmesa", "glfw", "host"
+  std::string renderer;  // GL_RENDERER
+  int width = 0;         // pixels
+  int height = 0;
+  std::string mode;      // "space" or "surface"
+  int frames = 0;        // frames rendered so far
+  double frame_ms = 0;   // GPU time of a frame, median over the frames rendered
+  // How the GPU times were taken: "gl_timestamp_query" on hardware drivers, or
+  // "finish_wall_clock" on Mesa's software rasterisers, whose timestamp queries miss the
+  // rasterisation (see thalassa/engine/gl/gpu_timer.hpp).
+  std::string timing;
+  std::vector<std::pair<std::string, double>> passes;  // pass -> GPU ms, median over frames
+  int resolved_waves = 0;  // waves summed as geometry or normals (surface mode)
+  std::vector<std::string> built;  // modules and shader features this scene caused to exist
+};
+
+struct RendererOptions {
+  std::vector<std::string> shader_roots;  // searched before the default shader folders
+};
+
+class Renderer {
+ public:
+  // `context` must be current and stay alive as long as the Renderer.
+  Renderer(GlContext& context, const Scene& scene, RendererOptions options = {});
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Draws one frame into the HDR target.
+  void render();
+  // The last frame: linear radiance, rows top first.
+  Image image() const;
+  // GL names of the HDR colour texture (RGBA32F) and its framebuffer, for host applications.
+  unsigned hdr_texture() const;
+  unsigned hdr_framebuffer() const;
+  // Draws the last frame tone-mapped like the PNG (exposure of the scene) into `framebuffer`
+  // (0: the context's default framebuffer) over a viewport of width x height pixels.
+  void present(unsigned framebuffer, int width, int height);
+
+  RenderStats stats() const;
+  const Scene& scene() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace thalassa

@@ -1,0 +1,199 @@
+#include "thalassa/planet/renderer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "thalassa/atmosphere/gl/sky_node.hpp"
+#include "thalassa/engine/gl/gpu_timer.hpp"
+#include "thalassa/engine/gl/hdr_target.hpp"
+#include "thalassa/engine/gl/scene_graph.hpp"
+#include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/engine/gl_info.hpp"
+#include "thalassa/ocean/gl/sea_node.hpp"
+#include "thalassa/planet/camera_frame.hpp"
+
+namespace thalassa {
+namespace {
+
+constexpr double kDegree = 3.14159265358979323846 / 180.0;
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+gl::FrameInputs frame_inputs(const Scene& scene) {
+  gl::FrameInputs inputs;
+  inputs.width = scene.image.width;
+  inputs.height = scene.image.height;
+  const CameraBasis basis =
+      camera_basis(scene.camera.heading, scene.camera.pitch, scene.camera.roll);
+  inputs.camera_right = basis.right;
+  inputs.camera_up = basis.up;
+  inputs.camera_forward = basis.forward;
+  inputs.tan_half_fov_y = std::tan(0.5 * scene.camera.fov_y * kDegree);
+  inputs.camera_height = scene.camera.height;
+  inputs.sun_direction = sun_direction(scene.sun.zenith, scene.sun.azimuth);
+  inputs.time = scene.time;
+  return inputs;
+}
+
+// Which sides of the horizon the image sees. The vertical component of the (unnormalised) ray
+// through image point (u, v) is linear in u and v, so its extremes over the image rectangle
+// are at the corners: the sky is visible iff a corner ray points up, the sea iff one points
+// down. (Flat-sea placeholder: issue 5 replaces this with the planet's exact horizon.)
+void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& sea_visible) {
+  const CameraBasis basis{inputs.camera_right, inputs.camera_up, inputs.camera_forward};
+  const double aspect = double(inputs.width) / double(inputs.height);
+  sky_visible = sea_visible = false;
+  for (double u : {-1.0, 1.0})
+    for (double v : {-1.0, 1.0}) {
+      const double z = view_ray(basis, inputs.tan_half_fov_y, aspect, u, v).z;
+      sky_visible = sky_visible || z > 0.0;
+      sea_visible = sea_visible || z < 0.0;
+    }
+  // Below the surface the placeholder sea fills the whole image with deep-water light.
+  if (inputs.camera_height <= 0.0) {
+    sea_visible = true;
+    sky_visible = false;
+  }
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  GlContext& context;
+  Scene scene;
+  gl::FrameInputs inputs;
+  gl::ShaderLibrary shaders;
+  gl::HdrTarget target;
+  gl::GpuTimer timer;
+  gl::SceneGraph graph;
+  GlInfo info;
+  std::vector<double> frame_ms;
+  std::map<std::string, std::vector<double>> pass_ms;
+  std::vector<std::string> pass_order;
+  gl::VertexArray present_vao;
+  gl::TimingSource timing;
+
+  Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
+      : context(context_),
+        scene(scene_),
+        inputs(frame_inputs(scene_)),
+        shaders([&] {
+          std::vector<std::filesystem::path> roots(options.shader_roots.begin(),
+                                                   options.shader_roots.end());
+          return roots;
+        }()),
+        target(scene_.image.width, scene_.image.height),
+        info(query_gl_info()),
+        timing(gl::GpuTimer::source_for_renderer(info.renderer)) {
+    if (!info.missing.empty()) {
+      std::string missing;
+      for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
+      throw gl::GlError("this OpenGL context lacks what thalassa needs: " + missing);
+    }
+    bool sky_visible = false, sea_visible = false;
+    horizon_visibility(inputs, sky_visible, sea_visible);
+    const bool sun_up = inputs.sun_direction.z > 0.0;
+    if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}));
+    if (sea_visible)
+      graph.add(ocean::make_sea_node({.wind_speed = scene.ocean.wind_speed, .sun_glint = sun_up}));
+  }
+};
+
+Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions options)
+    : impl_(std::make_unique<Impl>(context, scene, options)) {
+  // A first frame compiles every shader, so that no timed frame includes compilation.
+  render();
+  impl_->frame_ms.clear();
+  impl_->pass_ms.clear();
+}
+
+// GL objects are deleted in the renderer's own context (a no-op for a host's context, which
+// the host must keep current).
+Renderer::~Renderer() {
+  if (impl_) impl_->context.make_current();
+}
+
+void Renderer::render() {
+  Impl& m = *impl_;
+  m.context.make_current();
+  GLint previous_framebuffer = 0;
+  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous_framebuffer);
+  m.graph.render(m.inputs, m.target, m.shaders, m.timer);
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_framebuffer));
+  gl::PassTime frame;
+  const auto passes = m.timer.resolve(frame);
+  const bool wall = m.timing == gl::TimingSource::FinishWallClock;
+  m.frame_ms.push_back(wall ? frame.wall_ms : frame.query_ms);
+  m.pass_order.clear();
+  for (const auto& pass : passes) {
+    m.pass_order.push_back(pass.name);
+    m.pass_ms[pass.name].push_back(wall ? pass.wall_ms : pass.query_ms);
+  }
+}
+
+Image Renderer::image() const {
+  impl_->context.make_current();
+  Image image;
+  image.width = impl_->target.width();
+  image.height = impl_->target.height();
+  image.rgba = impl_->target.read_rgba_top_down();
+  return image;
+}
+
+unsigned Renderer::hdr_texture() const { return impl_->target.color_texture(); }
+unsigned Renderer::hdr_framebuffer() const { return impl_->target.framebuffer(); }
+
+void Renderer::present(unsigned framebuffer, int width, int height) {
+  Impl& m = *impl_;
+  m.context.make_current();
+  if (!m.present_vao) m.present_vao = gl::make_vertex_array();
+  const GLuint program = m.shaders.program({.vertex = "engine/fullscreen.vert", .fragment = "engine/tonemap.frag"});
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program);
+  glBindTextureUnit(0, m.target.color_texture());
+  glProgramUniform1f(program, glGetUniformLocation(program, "exposure"),
+                     static_cast<float>(m.scene.image.exposure));
+  glBindVertexArray(m.present_vao.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  glEnable(GL_DEPTH_TEST);
+  gl::check_error("present");
+}
+
+RenderStats Renderer::stats() const {
+  const Impl& m = *impl_;
+  RenderStats stats;
+  stats.backend = std::string(backend_name(m.context.backend()));
+  stats.renderer = m.info.renderer;
+  stats.width = m.target.width();
+  stats.height = m.target.height();
+  stats.mode = m.scene.camera.height >= kSpaceModeHeight ? "space" : "surface";
+  stats.frames = static_cast<int>(m.frame_ms.size());
+  stats.frame_ms = median(m.frame_ms);
+  stats.timing = m.timing == gl::TimingSource::FinishWallClock ? "finish_wall_clock"
+                                                               : "gl_timestamp_query";
+  for (const auto& name : m.pass_order) {
+    auto it = m.pass_ms.find(name);
+    if (it != m.pass_ms.end()) stats.passes.emplace_back(name, median(it->second));
+  }
+  stats.resolved_waves = 0;  // the placeholder flat sea resolves no wave as geometry or normals
+  stats.built.push_back("engine.hdr_target.rgba32f+depth32f." + std::to_string(stats.width) +
+                        "x" + std::to_string(stats.height));
+  for (const auto& node : m.graph.nodes())
+    for (const auto& item : node->built()) stats.built.push_back(item);
+  for (const auto& program : m.shaders.built_programs())
+    stats.built.push_back("shader:" + program);
+  return stats;
+}
+
+const Scene& Renderer::scene() const { return impl_->scene; }
+
+}  // namespace thalassa

@@ -1,0 +1,193 @@
+// The command line as users and scripts see it (DESIGN section 5): exit statuses 0, 1, 2, one
+// clear message on stderr for bad input with nothing written, the default outputs, --set, and
+// the statistics JSON.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "thalassa/engine/image.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string err;
+};
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thalassa_cli_" + std::to_string(getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  // Runs the program in dir_ with `args` (shell words), capturing stderr.
+  Result run(const std::string& args) {
+    const std::string command = "cd '" + dir_.string() + "' && '" THALASSA_EXE "' " + args +
+                                " 2> stderr.txt > stdout.txt";
+    const int raw = std::system(command.c_str());
+    Result result;
+    result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    std::ifstream in(dir_ / "stderr.txt");
+    std::stringstream text;
+    text << in.rdbuf();
+    result.err = text.str();
+    fs::remove(dir_ / "stderr.txt");
+    fs::remove(dir_ / "stdout.txt");
+    return result;
+  }
+  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  std::vector<std::string> files() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+  fs::path dir_;
+};
+
+const std::string kSmall = "--set image.width=32 --set image.height=24";
+
+TEST_F(Cli, DefaultRenderWritesExrAndPng) {
+  const Result r = run("render " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"thalassa.exr", "thalassa.png"}));
+  thalassa::Metadata metadata;
+  const thalassa::Image image = thalassa::read_image((dir_ / "thalassa.exr").string(), &metadata);
+  EXPECT_EQ(image.width, 32);
+  EXPECT_EQ(image.height, 24);
+  std::map<std::string, std::string> meta(metadata.begin(), metadata.end());
+  ASSERT_TRUE(meta.count("thalassa:scene"));
+  EXPECT_EQ(nlohmann::json::parse(meta["thalassa:scene"])["image"]["width"], 32);
+  EXPECT_TRUE(meta.count("thalassa:camera"));
+  EXPECT_TRUE(meta.count("thalassa:frame_ms"));
+  for (float v : image.rgba) ASSERT_TRUE(std::isfinite(v));
+}
+
+TEST_F(Cli, StatsJsonHasTheContractKeys) {
+  const Result r = run("render " + kSmall + " -o out.exr --no-png --stats stats.json --repeat 3");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"out.exr", "stats.json"}));
+  std::ifstream in(dir_ / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  for (const char* key : {"backend", "renderer", "width", "height", "mode", "frame_ms", "passes",
+                          "resolved_waves", "built"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  EXPECT_EQ(stats["width"], 32);
+  EXPECT_EQ(stats["mode"], "surface");
+  EXPECT_EQ(stats["frames"], 3);
+  EXPECT_GT(stats["frame_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(stats["passes"].contains("sky"));
+  EXPECT_TRUE(stats["passes"].contains("ocean"));
+  // What was built follows from the scene: the default looks at sky and sea under a risen sun.
+  const auto built = stats["built"].get<std::vector<std::string>>();
+  auto has = [&](const std::string& item) {
+    return std::find(built.begin(), built.end(), item) != built.end();
+  };
+  EXPECT_TRUE(has("atmosphere.analytic_sky"));
+  EXPECT_TRUE(has("ocean.flat_sea"));
+  EXPECT_TRUE(has("ocean.sun_glint"));
+}
+
+TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
+  // Looking up: no sea. Sun set: no glint and no sun disc.
+  ASSERT_EQ(run("render " + kSmall + " --set camera.pitch=60 --no-png --stats s.json").status, 0);
+  std::ifstream in(dir_ / "s.json");
+  const auto built = nlohmann::json::parse(in)["built"].get<std::vector<std::string>>();
+  for (const auto& item : built) EXPECT_EQ(item.find("ocean"), std::string::npos) << item;
+  ASSERT_EQ(run("render " + kSmall + " --set sun.zenith=100 --no-png --stats t.json").status, 0);
+  std::ifstream in2(dir_ / "t.json");
+  const auto built2 = nlohmann::json::parse(in2)["built"].get<std::vector<std::string>>();
+  for (const auto& item : built2) {
+    EXPECT_EQ(item.find("sun_glint"), std::string::npos) << item;
+    EXPECT_EQ(item.find("sun_disc"), std::string::npos) << item;
+  }
+  EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status, 0);
+  std::ifstream in3(dir_ / "u.json");
+  EXPECT_EQ(nlohmann::json::parse(in3)["mode"], "space");
+}
+
+TEST_F(Cli, SceneFileAndSetOverride) {
+  write("scene.json", R"({"image": {"width": 20, "height": 10}, "camera": {"pitch": 10}})");
+  ASSERT_EQ(run("render scene.json --set image.height=12 -o a.exr --png b.png").status, 0);
+  const thalassa::Image image = thalassa::read_image((dir_ / "b.png").string());
+  EXPECT_EQ(image.width, 20);
+  EXPECT_EQ(image.height, 12);
+}
+
+// Invalid input: status 2, one line naming the source, the key and the expectation; no file.
+void expect_invalid(const Result& r, const std::vector<std::string>& fragments) {
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  for (const auto& fragment : fragments)
+    EXPECT_NE(r.err.find(fragment), std::string::npos) << "'" << fragment << "' not in: " << r.err;
+}
+
+TEST_F(Cli, InvalidSceneFilesExitWith2AndWriteNothing) {
+  write("malformed.json", "{\"camera\": {\"height\": 4,}}");
+  expect_invalid(run("render malformed.json"), {"malformed.json", "JSON"});
+  write("unknown.json", R"({"camera": {"hieght": 4}})");
+  expect_invalid(run("render unknown.json"), {"unknown.json", "camera.hieght", "camera.height"});
+  write("type.json", R"({"camera": {"height": "high"}})");
+  expect_invalid(run("render type.json"), {"type.json", "camera.height", "number"});
+  write("range.json", R"({"camera": {"lat": 91}})");
+  expect_invalid(run("render range.json"), {"range.json", "camera.lat", "[-90, 90]"});
+  write("enum.json", R"({"planet": {"shape": "cube"}})");
+  expect_invalid(run("render enum.json"), {"enum.json", "planet.shape", "wgs84"});
+  expect_invalid(run("render missing.json"), {"missing.json"});
+  std::vector<std::string> left = files();
+  std::vector<std::string> inputs = {"enum.json", "malformed.json", "range.json", "type.json",
+                                     "unknown.json"};
+  EXPECT_EQ(left, inputs);  // no output, no temporary
+}
+
+TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
+  expect_invalid(run("render --set camera.height=abc"), {"--set", "camera.height"});
+  expect_invalid(run("render --set image.width=0"), {"--set", "image.width"});
+  expect_invalid(run("render --set nothing.here=1"), {"--set", "nothing.here"});
+  expect_invalid(run("render -o out.png"), {"-o", ".exr"});
+  expect_invalid(run("render -o nowhere/out.exr"), {"nowhere"});
+  EXPECT_EQ(run("render --backend vulkan").status, 2);
+  EXPECT_EQ(run("frobnicate").status, 2);
+  EXPECT_EQ(files(), std::vector<std::string>{});
+}
+
+TEST_F(Cli, InfoPrintsBackendAndCapabilities) {
+  const std::string command = "'" THALASSA_EXE "' info > '" + (dir_ / "info.txt").string() + "'";
+  ASSERT_EQ(std::system(command.c_str()), 0);
+  std::ifstream in(dir_ / "info.txt");
+  std::stringstream text;
+  text << in.rdbuf();
+  for (const char* fragment : {"backend:", "GL version:", "GL renderer:", "compute shaders",
+                               "clip control", "anisotropic filtering"})
+    EXPECT_NE(text.str().find(fragment), std::string::npos) << fragment;
+}
+
+TEST_F(Cli, BothHeadlessBackendsRenderTheSameImage) {
+  ASSERT_EQ(run("render " + kSmall + " --backend egl -o egl.exr --no-png --float").status, 0);
+  ASSERT_EQ(run("render " + kSmall + " --backend osmesa -o osmesa.exr --no-png --float").status, 0);
+  thalassa::Metadata meta_a, meta_b;
+  const auto a = thalassa::read_image((dir_ / "egl.exr").string(), &meta_a);
+  const auto b = thalassa::read_image((dir_ / "osmesa.exr").string(), &meta_b);
+  std::map<std::string, std::string> ma(meta_a.begin(), meta_a.end()), mb(meta_b.begin(), meta_b.end());
+  if (ma["thalassa:renderer"] == mb["thalassa:renderer"]) {
+    EXPECT_EQ(a.rgba, b.rgba);  // same rasteriser (llvmpipe): bit for bit
+  } else {
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());  // a GPU under EGL: float-level differences only
+    for (std::size_t i = 0; i < a.rgba.size(); ++i)
+      EXPECT_NEAR(a.rgba[i], b.rgba[i], 1e-2 * std::abs(b.rgba[i]) + 1e-6) << i;
+  }
+}
+
+}  // namespace

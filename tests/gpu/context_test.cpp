@@ -1,0 +1,53 @@
+// Contexts: the backend asked for is the one made, it is OpenGL 4.5 core with every capability
+// the engine relies on, and unknown or absent backends fail with a clear error.
+#include <gtest/gtest.h>
+
+#include <glad/gl.h>
+
+#include "test_support.hpp"
+
+namespace thalassa {
+namespace {
+
+TEST(Context, BackendIsOpenGl45CoreWithEverythingTheEngineNeeds) {
+  auto context = test::make_test_context();
+  EXPECT_EQ(context->backend(), test::backend_under_test());
+  EXPECT_FALSE(context->description().empty());
+  const GlInfo info = query_gl_info();
+  EXPECT_TRUE(info.missing.empty()) << "missing: " << (info.missing.empty() ? "" : info.missing[0]);
+  GLint major = 0, minor = 0, profile = 0;
+  glGetIntegerv(GL_MAJOR_VERSION, &major);
+  glGetIntegerv(GL_MINOR_VERSION, &minor);
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  EXPECT_GE(major * 10 + minor, 45);
+  EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+  EXPECT_FALSE(info.renderer.empty());
+}
+
+TEST(Context, TwoContextsInOneProcess) {
+  auto first = test::make_test_context();
+  auto second = test::make_test_context();
+  second->make_current();
+  EXPECT_TRUE(query_gl_info().missing.empty());
+  first->make_current();
+  EXPECT_TRUE(query_gl_info().missing.empty());
+}
+
+TEST(Context, HeadlessDefaultWorksWithoutDisplay) {
+  std::string log;
+  auto context = create_headless_context({}, &log);
+  EXPECT_NE(context->backend(), Backend::Glfw);
+  EXPECT_NE(context->backend(), Backend::Host);
+}
+
+TEST(Context, NamesAndErrors) {
+  EXPECT_EQ(parse_backend("egl"), Backend::Egl);
+  EXPECT_EQ(parse_backend("osmesa"), Backend::OsMesa);
+  EXPECT_EQ(parse_backend("glfw"), Backend::Glfw);
+  EXPECT_FALSE(parse_backend("vulkan").has_value());
+  EXPECT_THROW(create_context(Backend::Host), ContextError);
+  EXPECT_THROW(attach_host_context(nullptr), ContextError);
+}
+
+}  // namespace
+}  // namespace thalassa

@@ -1,0 +1,132 @@
+// Golden images (the model is Filament's backend tests): small headless renders of each kind of
+// scene compared with EXRs in tests/gpu/golden under a tolerance. On failure the render and a
+// diff image (|render - golden| / golden, per channel) are written to the test output folder.
+// After a deliberate change, scripts/regenerate-goldens rewrites the goldens (it sets
+// THALASSA_REGENERATE_GOLDENS=1, under which these tests write instead of compare, and says so).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "test_support.hpp"
+
+namespace thalassa {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Per-pixel relative difference allowed, and the share of pixels allowed to exceed it: llvmpipe
+// under EGL and OSMesa renders bit-identically; other drivers differ in the last bits of exp and
+// pow, and along the horizon's edge, by a pixel.
+constexpr double kPixelTolerance = 2e-3;
+constexpr double kOutlierShare = 0.005;
+
+struct GoldenCase {
+  const char* name;
+  const char* scene;  // JSON laid over the defaults; 160x120 images
+};
+
+const GoldenCase kCases[] = {
+    {"default", R"({"image": {"width": 160, "height": 120}})"},
+    {"sky_only", R"({"image": {"width": 160, "height": 120}, "camera": {"pitch": 40}})"},
+    {"straight_down", R"({"image": {"width": 160, "height": 120},
+                         "camera": {"pitch": -90, "height": 100}})"},
+    {"low_sun_rolled", R"({"image": {"width": 160, "height": 120}, "sun": {"zenith": 85},
+                          "camera": {"roll": 20, "heading": 170, "pitch": 2}})"},
+    {"sun_set", R"({"image": {"width": 160, "height": 120}, "sun": {"zenith": 95}})"},
+};
+
+// gtest prints the parameter by this (instead of its bytes).
+void PrintTo(const GoldenCase& c, std::ostream* out) { *out << c.name; }
+
+class Golden : public ::testing::TestWithParam<GoldenCase> {};
+
+TEST_P(Golden, MatchesGoldenImage) {
+  const GoldenCase& c = GetParam();
+  auto context = test::make_test_context();
+  Renderer renderer(*context, test::scene_from(c.scene));
+  renderer.render();
+  const Image image = renderer.image();
+  for (float v : image.rgba) ASSERT_TRUE(std::isfinite(v));
+
+  const std::string golden_path =
+      std::string(THALASSA_SOURCE_DIR "/tests/gpu/golden/") + c.name + ".exr";
+  if (const char* regenerate = std::getenv("THALASSA_REGENERATE_GOLDENS");
+      regenerate && std::string(regenerate) == "1") {
+    write_exr(golden_path, image, ExrPixelType::Float, {{"thalassa:golden", c.scene}});
+    std::printf("regenerated %s\n", golden_path.c_str());
+    return;
+  }
+  ASSERT_TRUE(fs::exists(golden_path)) << golden_path << " is missing: run scripts/regenerate-goldens";
+  const Image golden = read_image(golden_path);
+  ASSERT_EQ(golden.width, image.width);
+  ASSERT_EQ(golden.height, image.height);
+
+  Image diff = image;
+  std::size_t outliers = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+    double pixel_error = 0;
+    for (int ch = 0; ch < 3; ++ch) {
+      const double g = golden.rgba[i + ch], r = image.rgba[i + ch];
+      const double e = std::abs(r - g) / std::max(std::abs(g), 1e-4);
+      diff.rgba[i + ch] = static_cast<float>(e);
+      pixel_error = std::max(pixel_error, e);
+    }
+    worst = std::max(worst, pixel_error);
+    if (pixel_error > kPixelTolerance) ++outliers;
+  }
+  const double share = double(outliers) / (image.width * image.height);
+  if (share > kOutlierShare) {
+    const std::string base = test::output_dir() + "/" + c.name;
+    write_exr(base + ".render.exr", image, ExrPixelType::Float);
+    write_exr(base + ".diff.exr", diff, ExrPixelType::Float);
+    write_png(base + ".render.png", image, 10.0);
+    write_png(base + ".diff.png", diff, 100.0);
+    ADD_FAILURE() << c.name << ": " << outliers << " pixels (" << 100 * share
+                  << "%) differ by more than " << kPixelTolerance << " (worst " << worst
+                  << "); render and diff written to " << base << ".*";
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, Golden, ::testing::ValuesIn(kCases),
+                         [](const auto& info) { return std::string(info.param.name); });
+
+// Images are upright and not mirrored: the sun's disc lands where the camera model puts it.
+// Camera heading 170 degrees, sun at azimuth 180 and 10 degrees above the horizon: the sun is
+// 10 degrees to the right of the view centre and 10 degrees above it, i.e. in the upper right.
+TEST(Orientation, SunDiscIsUpperRightWhereTheCameraPutsIt) {
+  auto context = test::make_test_context();
+  const Scene scene = test::scene_from(R"({"image": {"width": 200, "height": 150},
+      "camera": {"heading": 170, "pitch": 0, "fov_y": 60}, "sun": {"zenith": 80, "azimuth": 180}})");
+  Renderer renderer(*context, scene);
+  renderer.render();
+  const Image image = renderer.image();
+  int best_x = 0, best_y = 0;
+  float best = -1;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (image.pixel(x, y)[1] > best) best = image.pixel(x, y)[1], best_x = x, best_y = y;
+  // Expected pixel from the pinhole model: tan of the angles over tan(fov_y / 2).
+  const glm::dvec3 sun = sun_direction(80, 180);
+  const CameraBasis b = camera_basis(170, 0, 0);
+  const double t = std::tan(30.0 * M_PI / 180.0), aspect = 200.0 / 150.0;
+  const double f = glm::dot(sun, b.forward);
+  const double u = glm::dot(sun, b.right) / f / (t * aspect), v = glm::dot(sun, b.up) / f / t;
+  const double x = (u + 1) / 2 * image.width, y = (1 - v) / 2 * image.height;
+  EXPECT_GT(x, image.width / 2.0);
+  EXPECT_LT(y, image.height / 2.0);
+  EXPECT_NEAR(best_x + 0.5, x, 1.5);
+  EXPECT_NEAR(best_y + 0.5, y, 1.5);
+
+  // The same through the files the program writes: row 0 of the EXR is the top row.
+  const std::string path = test::output_dir() + "/orientation.exr";
+  write_exr(path, image, ExrPixelType::Float);
+  const Image back = read_image(path);
+  EXPECT_EQ(back.pixel(best_x, best_y)[1], best);
+}
+
+}  // namespace
+}  // namespace thalassa

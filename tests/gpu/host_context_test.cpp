@@ -1,0 +1,65 @@
+// Drawing into a context the host application owns: the "host" (this test) creates its own
+// context and framebuffer with its own GL loader, hands thalassa its GetProcAddress, and asks it
+// to render and present into the host's framebuffer. thalassa must draw the same frame as with
+// its own context, leave the host's context current and restore the host's framebuffer binding.
+#include <gtest/gtest.h>
+
+#include <glad/gl.h>
+
+#include "test_support.hpp"
+
+namespace thalassa {
+namespace {
+
+TEST(HostContext, RendersIntoTheHostsFramebuffer) {
+  // The host's own context, made by the backend under test; thalassa sees only the loader.
+  auto host_owned = test::make_test_context();
+  auto attached = attach_host_context(host_owned->proc_address(), "test host");
+  EXPECT_EQ(attached->backend(), Backend::Host);
+
+  const int width = 64, height = 48;
+  GLuint color = 0, fbo = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &color);
+  glTextureStorage2D(color, 1, GL_RGBA8, width, height);
+  glCreateFramebuffers(1, &fbo);
+  glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
+  ASSERT_EQ(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+
+  const Scene scene = test::scene_from(R"({"image": {"width": 64, "height": 48}})");
+  Renderer renderer(*attached, scene);
+  renderer.render();
+  GLint bound = 0;
+  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
+  EXPECT_EQ(GLuint(bound), fbo) << "render() must restore the host's framebuffer binding";
+
+  renderer.present(fbo, width, height);
+  std::vector<unsigned char> pixels(width * height * 4);
+  glGetTextureImage(color, 0, GL_RGBA, GL_UNSIGNED_BYTE, int(pixels.size()), pixels.data());
+
+  // The host's pixels are the PNG's tone mapping of thalassa's HDR frame (GL rows bottom-up).
+  const Image hdr = renderer.image();
+  int mismatches = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const double expected = 255.0 * tone_map(hdr.pixel(x, height - 1 - y)[c], scene.image.exposure);
+        if (std::abs(pixels[(y * width + x) * 4 + c] - expected) > 1.01) ++mismatches;
+      }
+  EXPECT_EQ(mismatches, 0);
+
+  // And the HDR frame equals the one rendered with thalassa's own context.
+  {
+    auto own = create_context(test::backend_under_test());
+    Renderer own_renderer(*own, scene);
+    own_renderer.render();
+    EXPECT_EQ(own_renderer.image().rgba, hdr.rgba);
+  }
+
+  host_owned->make_current();
+  glDeleteFramebuffers(1, &fbo);
+  glDeleteTextures(1, &color);
+}
+
+}  // namespace
+}  // namespace thalassa

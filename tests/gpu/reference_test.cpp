@@ -1,0 +1,172 @@
+// The GLSL functions against their double-precision C++ references (the same source compiled
+// as C++, DESIGN section 8): each function is evaluated on the GPU over a grid of view
+// directions and sun positions, read back from a float target and compared at float tolerance.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include <filesystem>
+
+#include "analytic_sky_reference.hpp"
+#include "flat_sea_reference.hpp"
+#include "test_support.hpp"
+#include "thalassa/engine/gl/hdr_target.hpp"
+#include "thalassa/engine/gl/shader_library.hpp"
+
+namespace thalassa {
+namespace {
+
+// Grid of view directions: columns sweep azimuth, rows sweep elevation from straight down to
+// straight up, with extra rows packed near the horizon where the functions are stiffest.
+constexpr int kWidth = 48;
+constexpr int kHeight = 40;
+
+glm::vec3 grid_direction(int x, int y) {
+  const double azimuth = 2.0 * M_PI * (x + 0.5) / kWidth;
+  const double s = 2.0 * (y + 0.5) / kHeight - 1.0;  // (-1, 1)
+  const double elevation = 0.5 * M_PI * s * s * s;     // cubic: dense near the horizon
+  return glm::vec3(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
+                   std::sin(elevation));
+}
+
+// Relative error bound for float evaluation of these closed forms (exp, pow of ~1e-7 relative
+// accuracy, a few dozen operations), and an absolute floor relative to the largest value.
+constexpr double kRelativeTolerance = 2e-4;
+constexpr double kAbsoluteFloor = 1e-5;
+
+class ReferenceTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    context_ = test::make_test_context();
+    library_ = std::make_unique<gl::ShaderLibrary>(
+        std::vector<std::filesystem::path>{THALASSA_SOURCE_DIR "/tests/gpu/shaders"});
+    target_ = std::make_unique<gl::HdrTarget>(kWidth, kHeight);
+    std::vector<float> texels(kWidth * kHeight * 4);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) {
+        const glm::vec3 d = glm::normalize(grid_direction(x, y));
+        directions_.push_back(d);
+        float* t = &texels[(y * kWidth + x) * 4];
+        t[0] = d.x, t[1] = d.y, t[2] = d.z, t[3] = 0;
+      }
+    input_ = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(input_.get(), 1, GL_RGBA32F, kWidth, kHeight);
+    glTextureSubImage2D(input_.get(), 0, 0, 0, kWidth, kHeight, GL_RGBA, GL_FLOAT, texels.data());
+    vao_ = gl::make_vertex_array();
+  }
+
+  // Evaluates FUNCTION over the grid; rows of the result follow the texel rows (bottom-up).
+  std::vector<float> evaluate(int function, const glm::dvec3& sun, double wind,
+                              const glm::dvec3& reflectance, const glm::dvec3& irradiance) {
+    const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
+                                              .fragment = "evaluate.frag",
+                                              .defines = {{"FUNCTION", std::to_string(function)}}});
+    target_->begin();
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(program);
+    glBindTextureUnit(0, input_.get());
+    glProgramUniform3f(program, glGetUniformLocation(program, "sun_dir"), sun.x, sun.y, sun.z);
+    glProgramUniform1f(program, glGetUniformLocation(program, "wind_speed"), wind);
+    glProgramUniform3f(program, glGetUniformLocation(program, "deep_reflectance"), reflectance.x,
+                       reflectance.y, reflectance.z);
+    glProgramUniform3f(program, glGetUniformLocation(program, "horizontal_irradiance"),
+                       irradiance.x, irradiance.y, irradiance.z);
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    std::vector<float> top_down = target_->read_rgba_top_down();
+    std::vector<float> bottom_up(top_down.size());
+    for (int y = 0; y < kHeight; ++y)
+      std::copy_n(&top_down[(kHeight - 1 - y) * kWidth * 4], kWidth * 4,
+                  &bottom_up[y * kWidth * 4]);
+    return bottom_up;
+  }
+
+  // Compares GPU values with `reference(direction)` channel by channel; returns the worst
+  // relative error (relative to max(|reference|, floor * largest reference)).
+  template <typename Reference>
+  double compare(const std::vector<float>& gpu, int channels, Reference reference) {
+    std::vector<glm::dvec4> expected;
+    double largest = 0;
+    for (const glm::vec3& d : directions_) {
+      expected.push_back(reference(glm::dvec3(d)));
+      for (int c = 0; c < channels; ++c) largest = std::max(largest, std::abs(expected.back()[c]));
+    }
+    double worst = 0;
+    for (std::size_t i = 0; i < directions_.size(); ++i)
+      for (int c = 0; c < channels; ++c) {
+        const double e = expected[i][c];
+        const double g = gpu[i * 4 + c];
+        EXPECT_TRUE(std::isfinite(g)) << "pixel " << i;
+        const double error = std::abs(g - e) / std::max(std::abs(e), kAbsoluteFloor * largest);
+        worst = std::max(worst, error);
+        EXPECT_LE(error, kRelativeTolerance)
+            << "pixel " << i << " channel " << c << ": gpu " << g << " reference " << e
+            << " direction " << directions_[i].x << " " << directions_[i].y << " "
+            << directions_[i].z;
+      }
+    return worst;
+  }
+
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<gl::ShaderLibrary> library_;
+  std::unique_ptr<gl::HdrTarget> target_;
+  gl::Texture input_;
+  gl::VertexArray vao_;
+  std::vector<glm::vec3> directions_;
+};
+
+// Sun zenith angles (degrees): overhead, the default, low, at and just below the horizon.
+const double kSunZeniths[] = {0.0, 30.0, 60.0, 85.0, 89.9, 90.0, 95.0};
+
+glm::dvec3 sun_at(double zenith_deg) {
+  // Rounded to float first: the GPU sees the float uniform.
+  return glm::dvec3(glm::vec3(std::sin(zenith_deg * M_PI / 180) * std::sin(0.7),
+                              std::sin(zenith_deg * M_PI / 180) * std::cos(0.7),
+                              std::cos(zenith_deg * M_PI / 180)));
+}
+
+TEST_F(ReferenceTest, AnalyticSkyMatchesDoubleReference) {
+  for (double zenith : kSunZeniths) {
+    const glm::dvec3 sun = sun_at(zenith);
+    const auto gpu = evaluate(1, sun, 0, {}, {});
+    const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
+      return glm::dvec4(glsl::AnalyticSkyRadiance(v, sun), 1.0);
+    });
+    std::printf("sky, sun zenith %5.1f deg: worst relative error %.3g\n", zenith, worst);
+  }
+}
+
+TEST_F(ReferenceTest, FlatSeaGlintAndFresnelMatchDoubleReference) {
+  for (double zenith : kSunZeniths)
+    for (double wind : {0.0, 10.0, 40.0}) {
+      const glm::dvec3 sun = sun_at(zenith);
+      const auto gpu = evaluate(3, sun, wind, {}, {});
+      const double worst = compare(gpu, 2, [&](const glm::dvec3& v) {
+        return glm::dvec4(glsl::FlatSeaGlintFactor(v, sun, glsl::FlatSeaSlopeVariance(wind)),
+                          glsl::FlatSeaFresnel(v.z), 0.0, 1.0);
+      });
+      std::printf("glint, sun zenith %5.1f deg, wind %4.1f m/s: worst relative error %.3g\n",
+                  zenith, wind, worst);
+    }
+}
+
+TEST_F(ReferenceTest, FlatSeaRadianceMatchesDoubleReference) {
+  const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
+  for (double zenith : kSunZeniths) {
+    const glm::dvec3 sun = sun_at(zenith);
+    const glm::dvec3 irradiance =
+        glm::dvec3(glm::vec3(glsl::AnalyticSunHorizontalIrradiance(sun) + glsl::AnalyticSkyIrradiance(sun)));
+    const auto gpu = evaluate(4, sun, 10.0, reflectance, irradiance);
+    const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
+      return glm::dvec4(glsl::FlatSeaRadianceWithIrradiance(v, sun, 10.0, glm::dvec3(glm::vec3(reflectance)),
+                                                            irradiance),
+                        1.0);
+    });
+    std::printf("sea radiance, sun zenith %5.1f deg: worst relative error %.3g\n", zenith, worst);
+  }
+}
+
+}  // namespace
+}  // namespace thalassa
