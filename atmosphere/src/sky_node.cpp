@@ -18,13 +18,8 @@ class SkyNode final : public gl::Node {
     const GLuint program =
         shaders.program({"engine/fullscreen.vert", "atmosphere/sky.frag", "", defines});
     glUseProgram(program);
-    // The sky lies at infinity: the far plane of reversed-Z is 0, the cleared value, so the
-    // test passes and nothing drawn later can be hidden by it.
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_ALWAYS);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
+    // The sky lies at infinity: nothing drawn later can be hidden by it.
+    gl::draw_fullscreen_pass();
   }
 
  private:

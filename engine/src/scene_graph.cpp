@@ -26,6 +26,14 @@ FrameUniforms make_frame_uniforms(const FrameInputs& inputs) {
   return u;
 }
 
+void draw_fullscreen_pass() {
+  glDepthMask(GL_FALSE);
+  glDepthFunc(GL_ALWAYS);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_TRUE);
+}
+
 SceneGraph::SceneGraph() : frame_uniforms_(make_buffer()), empty_vao_(make_vertex_array()) {
   glNamedBufferStorage(frame_uniforms_.get(), sizeof(FrameUniforms), nullptr,
                        GL_DYNAMIC_STORAGE_BIT);

@@ -33,14 +33,8 @@ class SeaNode final : public gl::Node {
                        float(reflectance.x), float(reflectance.y), float(reflectance.z));
     glProgramUniform3f(program, glGetUniformLocation(program, "horizontal_irradiance"),
                        float(irradiance.x), float(irradiance.y), float(irradiance.z));
-    // A full-screen pass over the sky: the triangle lies on reversed-Z's far plane (0), so the
-    // depth test must not reject it. The flat placeholder writes no depth; the planet's sea
-    // (issue 5) writes its true depth.
-    glDepthMask(GL_FALSE);
-    glDepthFunc(GL_ALWAYS);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
+    // The flat placeholder writes no depth; the planet's sea (issue 5) writes its true depth.
+    gl::draw_fullscreen_pass();
   }
 
  private:

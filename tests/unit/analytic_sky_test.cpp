@@ -9,16 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "analytic_sky_reference.hpp"
+#include "thalassa/planet/camera_frame.hpp"
 
 namespace thalassa::glsl {
 namespace {
 
 // Unit direction of a zenith angle and an azimuth (clockwise from north), both in degrees.
 vec3 Direction(double zenith_deg, double azimuth_deg) {
-  const double zenith = zenith_deg * DEGREE;
-  const double azimuth = azimuth_deg * DEGREE;
-  return vec3(std::sin(zenith) * std::sin(azimuth), std::sin(zenith) * std::cos(azimuth),
-              std::cos(zenith));
+  return thalassa::sun_direction(zenith_deg, azimuth_deg);
 }
 
 double RelativeDifference(double a, double b) {

@@ -44,6 +44,11 @@ constexpr GLuint kFrameBinding = 0;
 
 FrameUniforms make_frame_uniforms(const FrameInputs& inputs);
 
+// Draws the full-screen triangle of shaders/engine/fullscreen.vert with the bound program. The
+// triangle lies on reversed-Z's far plane (0, the cleared depth), so the depth test is set to
+// pass and depth writes are off during the draw; both are restored after it.
+void draw_fullscreen_pass();
+
 class Node {
  public:
   virtual ~Node() = default;
