@@ -112,7 +112,14 @@ int run_render(const RenderArgs& args) {
   std::unique_ptr<GlContext> context = args.backend.empty()
                                            ? create_headless_context(options)
                                            : create_context(*parse_backend(args.backend), options);
-  Renderer renderer(*context, scene);
+  std::unique_ptr<Renderer> renderer_owner;
+  try {
+    renderer_owner = std::make_unique<Renderer>(*context, scene);
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+  Renderer& renderer = *renderer_owner;
   for (int i = 0; i < args.repeat; ++i) {
     renderer.render();
     if (context->backend() == Backend::Glfw) {

@@ -44,7 +44,7 @@ void HdrTarget::begin() {
 std::vector<float> HdrTarget::read_rgba_top_down() const {
   const std::size_t row = static_cast<std::size_t>(width_) * 4;
   std::vector<float> bottom_up(row * static_cast<std::size_t>(height_));
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  // RGBA float rows are 16-byte multiples: aligned for any GL_PACK_ALIGNMENT a host has set.
   glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT,
                     static_cast<GLsizei>(bottom_up.size() * sizeof(float)), bottom_up.data());
   check_error("HDR target read-back");

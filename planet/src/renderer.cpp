@@ -9,6 +9,7 @@
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/engine/gl/state_guard.hpp"
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/ocean/gl/sea_node.hpp"
 #include "thalassa/planet/camera_frame.hpp"
@@ -91,6 +92,11 @@ struct Renderer::Impl {
         target(scene_.image.width, scene_.image.height),
         info(query_gl_info()),
         timing(gl::GpuTimer::source_for_renderer(info.renderer)) {
+    // A user's sky photograph must not be silently replaced by the model sky.
+    if (!scene.sky.exr.empty())
+      throw SceneError("sky.exr: expected an empty value (skies from HDR images come with the "
+                       "environment-map provider, not yet in this version), got \"" +
+                       scene.sky.exr + "\"");
     if (!info.missing.empty()) {
       std::string missing;
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
@@ -122,11 +128,11 @@ Renderer::~Renderer() {
 void Renderer::render() {
   Impl& m = *impl_;
   m.context.make_current();
-  GLint previous_framebuffer = 0;
-  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous_framebuffer);
-  m.graph.render(m.inputs, m.target, m.shaders, m.timer);
-  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous_framebuffer));
   gl::PassTime frame;
+  {
+    const gl::StateGuard guard;  // a host's context gets its state back
+    m.graph.render(m.inputs, m.target, m.shaders, m.timer);
+  }
   const auto passes = m.timer.resolve(frame);
   const bool wall = m.timing == gl::TimingSource::FinishWallClock;
   m.frame_ms.push_back(wall ? frame.wall_ms : frame.query_ms);
@@ -153,7 +159,9 @@ void Renderer::present(unsigned framebuffer, int width, int height) {
   Impl& m = *impl_;
   m.context.make_current();
   if (!m.present_vao) m.present_vao = gl::make_vertex_array();
-  const GLuint program = m.shaders.program({.vertex = "engine/fullscreen.vert", .fragment = "engine/tonemap.frag"});
+  const GLuint program =
+      m.shaders.program({.vertex = "engine/fullscreen.vert", .fragment = "engine/tonemap.frag"});
+  const gl::StateGuard guard;
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
@@ -163,8 +171,6 @@ void Renderer::present(unsigned framebuffer, int width, int height) {
                      static_cast<float>(m.scene.image.exposure));
   glBindVertexArray(m.present_vao.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindVertexArray(0);
-  glEnable(GL_DEPTH_TEST);
   gl::check_error("present");
 }
 

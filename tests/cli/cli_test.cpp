@@ -158,6 +158,7 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   expect_invalid(run("render --set nothing.here=1"), {"--set", "nothing.here"});
   expect_invalid(run("render -o out.png"), {"-o", ".exr"});
   expect_invalid(run("render -o nowhere/out.exr"), {"nowhere"});
+  expect_invalid(run("render --set sky.exr=noon.exr"), {"sky.exr", "noon.exr"});
   EXPECT_EQ(run("render --backend vulkan").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{});

@@ -1,7 +1,7 @@
 // Drawing into a context the host application owns: the "host" (this test) creates its own
 // context and framebuffer with its own GL loader, hands thalassa its GetProcAddress, and asks it
 // to render and present into the host's framebuffer. thalassa must draw the same frame as with
-// its own context, leave the host's context current and restore the host's framebuffer binding.
+// its own context, leave the host's context current and give back every GL state it changed.
 #include <gtest/gtest.h>
 
 #include <glad/gl.h>
@@ -25,15 +25,42 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color, 0);
   ASSERT_EQ(glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER), GLenum(GL_FRAMEBUFFER_COMPLETE));
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  // Host state that thalassa's passes change internally and must give back.
+  GLuint host_vao = 0;
+  glCreateVertexArrays(1, &host_vao);
+  glBindVertexArray(host_vao);
+  glViewport(3, 4, 20, 10);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  auto expect_host_state = [&](const char* after) {
+    GLint value = 0, viewport[4] = {0, 0, 0, 0};
+    GLboolean mask = GL_TRUE;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &value);
+    EXPECT_EQ(GLuint(value), fbo) << after;
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &value);
+    EXPECT_EQ(GLuint(value), host_vao) << after;
+    glGetIntegerv(GL_CURRENT_PROGRAM, &value);
+    EXPECT_EQ(value, 0) << after;
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    EXPECT_EQ(viewport[0], 3) << after;
+    EXPECT_EQ(viewport[3], 10) << after;
+    EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST)) << after;
+    glGetIntegerv(GL_DEPTH_FUNC, &value);
+    EXPECT_EQ(value, GL_LEQUAL) << after;
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &mask);
+    EXPECT_EQ(mask, GL_FALSE) << after;
+    glGetIntegerv(GL_CLIP_DEPTH_MODE, &value);
+    EXPECT_EQ(value, GL_NEGATIVE_ONE_TO_ONE) << after;
+  };
 
   const Scene scene = test::scene_from(R"({"image": {"width": 64, "height": 48}})");
   Renderer renderer(*attached, scene);
   renderer.render();
-  GLint bound = 0;
-  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
-  EXPECT_EQ(GLuint(bound), fbo) << "render() must restore the host's framebuffer binding";
-
+  expect_host_state("after render()");
   renderer.present(fbo, width, height);
+  expect_host_state("after present()");
   std::vector<unsigned char> pixels(width * height * 4);
   glGetTextureImage(color, 0, GL_RGBA, GL_UNSIGNED_BYTE, int(pixels.size()), pixels.data());
 
@@ -57,6 +84,7 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   }
 
   host_owned->make_current();
+  glDeleteVertexArrays(1, &host_vao);
   glDeleteFramebuffers(1, &fbo);
   glDeleteTextures(1, &color);
 }

@@ -43,13 +43,16 @@ struct RendererOptions {
 
 class Renderer {
  public:
-  // `context` must be current and stay alive as long as the Renderer.
+  // `context` must be current and stay alive as long as the Renderer. Throws SceneError for a
+  // valid scene that this version cannot draw (sky.exr), GlError or ShaderError otherwise.
   Renderer(GlContext& context, const Scene& scene, RendererOptions options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Draws one frame into the HDR target.
+  // Draws one frame into the HDR target. Every GL state it changes is restored afterwards (the
+  // framebuffer bindings, viewport, program, vertex array, depth state, clip control, uniform
+  // buffer binding 0, texture unit 0), so a host's context is left as it was.
   void render();
   // The last frame: linear radiance, rows top first.
   Image image() const;
@@ -57,7 +60,8 @@ class Renderer {
   unsigned hdr_texture() const;
   unsigned hdr_framebuffer() const;
   // Draws the last frame tone-mapped like the PNG (exposure of the scene) into `framebuffer`
-  // (0: the context's default framebuffer) over a viewport of width x height pixels.
+  // (0: the context's default framebuffer) over a viewport of width x height pixels; restores
+  // the GL state like render().
   void present(unsigned framebuffer, int width, int height);
 
   RenderStats stats() const;
