@@ -63,6 +63,18 @@ void write_atomically(const std::string& path, const oiio::ImageSpec& spec, oiio
 
 }  // namespace
 
+unsigned char quantize_8bit(double encoded, int x, int y) {
+  // Bayer's 8x8 threshold matrix: each of 0..63 once, neighbours far apart.
+  static constexpr unsigned char kBayer[8][8] = {
+      {0, 32, 8, 40, 2, 34, 10, 42},  {48, 16, 56, 24, 50, 18, 58, 26},
+      {12, 44, 4, 36, 14, 46, 6, 38}, {60, 28, 52, 20, 62, 30, 54, 22},
+      {3, 35, 11, 43, 1, 33, 9, 41},  {51, 19, 59, 27, 49, 17, 57, 25},
+      {15, 47, 7, 39, 13, 45, 5, 37}, {63, 31, 55, 23, 61, 29, 53, 21}};
+  const double dither = (kBayer[y & 7][x & 7] + 0.5) / 64.0 - 0.5;
+  const double level = std::floor(255.0 * std::clamp(encoded, 0.0, 1.0) + 0.5 + dither);
+  return static_cast<unsigned char>(std::clamp(level, 0.0, 255.0));
+}
+
 double srgb_encode(double linear) {
   const double x = std::clamp(linear, 0.0, 1.0);
   return x <= kSrgbLinearThreshold ? kSrgbLinearSlope * x
@@ -90,10 +102,12 @@ void write_png(const std::string& path, const Image& image, double exposure,
                const Metadata& metadata) {
   check_image(path, image);
   std::vector<unsigned char> bytes(static_cast<std::size_t>(image.width) * image.height * 3);
-  for (std::size_t i = 0, n = static_cast<std::size_t>(image.width) * image.height; i < n; ++i)
-    for (int c = 0; c < 3; ++c)
-      bytes[i * 3 + c] = static_cast<unsigned char>(
-          std::lround(255.0 * tone_map(image.rgba[i * 4 + c], exposure)));
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * image.width + x;
+      for (int c = 0; c < 3; ++c)
+        bytes[i * 3 + c] = quantize_8bit(tone_map(image.rgba[i * 4 + c], exposure), x, y);
+    }
   oiio::ImageSpec spec(image.width, image.height, 3, oiio::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   for (const auto& [key, value] : metadata) spec.attribute(key, value);

@@ -92,9 +92,29 @@ TEST_F(ImageIo, PngIsToneMappedAndUpright) {
   write_png(path("p.png"), image, 10.0);
   const Image back = read_image(path("p.png"));
   ASSERT_EQ(back.width, 2);
-  EXPECT_NEAR(back.pixel(0, 0)[0], std::lround(255 * tone_map(0.05, 10)) / 255.0, 1e-6);
+  EXPECT_NEAR(back.pixel(0, 0)[0], quantize_8bit(tone_map(0.05, 10), 0, 0) / 255.0, 1e-6);
   EXPECT_EQ(back.pixel(1, 0)[0], 0.0f);
-  EXPECT_NEAR(back.pixel(1, 1)[2], std::lround(255 * tone_map(1.0, 10)) / 255.0, 1e-6);
+  EXPECT_NEAR(back.pixel(1, 1)[2], quantize_8bit(tone_map(1.0, 10), 1, 1) / 255.0, 1e-6);
+}
+
+TEST(Quantize, DitherIsUnbiasedWithinOneStepAndExactAtTheEnds) {
+  for (double v : {0.0, 1.0}) {
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) EXPECT_EQ(quantize_8bit(v, x, y), v * 255);
+  }
+  for (double v = 0.001; v < 1.0; v += 0.0137) {
+    double sum = 0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        const int q = quantize_8bit(v, x, y);
+        EXPECT_LE(std::abs(q - 255 * v), 1.0);  // never more than one step off
+        sum += q;
+      }
+    // Over the 8x8 tile the mean is the exact value to within 1/64 step: no bias, no bands.
+    EXPECT_NEAR(sum / 64, 255 * v, 1.0 / 64 + 1e-9) << v;
+  }
+  EXPECT_EQ(quantize_8bit(-1, 0, 0), 0);
+  EXPECT_EQ(quantize_8bit(2, 0, 0), 255);
 }
 
 TEST_F(ImageIo, FailedWriteLeavesNothingBehind) {

@@ -32,9 +32,14 @@ class ImageError : public std::runtime_error {
 
 // The PNG's tone mapping, per channel: v = 1 - exp(-exposure * L) (an exponential shoulder that
 // never clips: Bruneton's 2017 demo uses the same), then the sRGB transfer function (IEC
-// 61966-2-1), then rounding to 8 bits. Non-finite or negative radiance maps to 0.
+// 61966-2-1), then quantize_8bit(). Non-finite or negative radiance maps to 0.
 double tone_map(double radiance, double exposure);
 double srgb_encode(double linear);  // [0, 1] -> [0, 1]
+// Rounds an encoded value in [0, 1] to 8 bits with an 8x8 ordered (Bayer) dither of the pixel
+// (x, y), y counted from the top: floor(255 v + 0.5 + d(x, y)), d in (-0.5, 0.5) with mean 0.
+// Sky and sea gradients change by less than one 8-bit step over tens of pixels; plain rounding
+// shows those steps as bands, the dither does not. Deterministic, so PNGs stay reproducible.
+unsigned char quantize_8bit(double encoded, int x, int y);
 
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
