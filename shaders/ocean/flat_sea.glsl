@@ -18,24 +18,67 @@
 // the surface, see FlatSeaDeepRadiance.
 //
 // Glint (Cox & Munk 1954, "Measurement of the roughness of the sea surface from photographs of
-// the sun's glitter", JOSA 44(11), 838-850; the form used by Bruneton et al. 2010, "Real-time
-// realistic ocean lighting using seamless transitions from geometry to BRDF", without their
-// shadowing term). The surface is a set of mirror facets z = eta(x, y) whose slopes
+// the sun's glitter", JOSA 44(11), 838-850, with the Smith masking-shadowing term of Ross, Dion &
+// Potvin 2005 in the form used by Bruneton, Neyret & Holzschuch 2010, "Real-time realistic ocean
+// lighting using seamless transitions from geometry to BRDF", Computer Graphics Forum 29(2),
+// their eq. 5, 8, 9, 13 and 15). The surface is a set of mirror facets z = eta(x, y) whose slopes
 // zeta = (eta_x, eta_y) have the pdf p(zeta) per unit slope area and horizontal surface area.
 // Only the facets of normal h = normalize(v + s) mirror the sun into the eye; their slopes are
 // zeta = -(h.x, h.y) / h.z. Balance power per unit horizontal area: a facet of slope zeta has
 // area 1 / cos theta_h per unit horizontal area and receives E (s.h) from the sun (E: irradiance
-// on a surface facing the sun), so
+// on a surface facing the sun), so, without shadowing,
 //   L cos theta_v domega_v = R(v.h) E (s.h) p(zeta) dzeta / cos theta_h.
 // Slope and normal solid angle: zeta = tan theta_h (cos phi, sin phi) gives
 // dzeta = tan theta_h d(tan theta_h) dphi = domega_h / cos^3 theta_h, and reflection gives
-// domega_v = 4 (v.h) domega_h with v.h = s.h. Hence
-//   L_glint = E R(v.h) p(zeta) / (4 cos^4 theta_h cos theta_v),
-// and the BRDF is L_glint / (E cos theta_s). The test integrates it over the view hemisphere:
-// it returns the Fresnel-weighted flux intercepted by the facets, about R(theta_s) for small
-// slopes, at most 1 for the sun up to 80 deg from the zenith. Without a shadowing term the
-// fraction exceeds 1 for a sun within a few degrees of the horizon (1.4 at 89 deg with wind),
-// where the transmitted sun is weak; acceptable for the placeholder.
+// domega_v = 4 (v.h) domega_h with v.h = s.h. Hence, with the masking-shadowing factor G,
+//   L_glint = E R(v.h) p(zeta) G / (4 cos^4 theta_h cos theta_v),
+//   G = 1 / (1 + Lambda(theta_v) + Lambda(theta_s))                       (paper eq. 5, 15)
+// and the BRDF is L_glint / (E cos theta_s).
+//
+// Masking-shadowing (Smith 1967, "Geometrical shadowing of a random rough surface", IEEE Trans.
+// Antennas Propag. 15(5), 668-671). A facet is seen from direction w (zenith angle theta) unless
+// the surface rises above the ray beyond it. For a surface of uncorrelated Gaussian heights and
+// slopes Smith's Lambda is the mean excess slope beyond the ray's, per unit ray slope:
+//   Lambda(theta) = (1 / mu) integral_mu^inf (q - mu) P(q) dq,  mu = cot theta,
+// P: the pdf of the slope q along w's azimuth, Gaussian of variance sigma^2 / 2 (half the total
+// mean square slope, whatever the azimuth: the pdf is isotropic). With a = mu / (sqrt(2) *
+// sqrt(sigma^2 / 2)) = cot theta / sigma, the Gaussian integrals give
+//   Lambda(a) = (exp(-a^2) - a sqrt(pi) erfc(a)) / (2 a sqrt(pi))          (paper eq. 8)
+// which is the paper's eq. 9 with sigma_x^2 = sigma_y^2 = sigma^2 / 2 (its sigma_x^2 is the
+// per-axis variance; its eq. 9 as printed reads "tan theta_i" under the -1/2 power, where the
+// dimensions and Smith's definition require tan^2 theta_i, i.e. a = cot theta / sqrt(2 sigma_x^2),
+// as in Bruneton's published code). Lambda = 0 for a view from the zenith, Lambda -> inf (as
+// 1 / (2 a sqrt(pi))) for a grazing one. The same Gaussian integral gives the identity behind
+// the normalisation of paper eq. 10-11, checked numerically by the test:
+//   integral max(0, w.n) / n.z p(zeta) dzeta = integral (cos theta - sin theta q)_+ P(q) dq
+//                                            = cos theta (1 + Lambda(theta)),
+// the area of the facets facing w, projected onto the plane normal to w, per unit horizontal
+// area (FlatSeaSmithFacingArea).
+//
+// Form of G: 1 / (1 + Lambda_v + Lambda_s) is the paper's (eq. 5, from Ross et al.), the
+// "height-correlated" Smith masking-shadowing function (Heitz 2014, "Understanding the
+// masking-shadowing function in microfacet-based BRDFs", JCGT 3(2)): a facet seen from v and lit
+// from s is visible from both if no surface rises above either ray, and a high facet is likely
+// visible from both, so the two visibilities are positively correlated and the joint probability
+// is larger than the product of the separate ones (the "uncorrelated" form 1 / ((1 + Lambda_v)
+// (1 + Lambda_s)), which over-darkens). Chosen because it is the paper's (the future ocean uses
+// it) and it keeps the BRDF reciprocal (symmetric in v, s).
+//
+// Energy: the glint's directional albedo is the facet integral
+//   rho(s) = integral R(s.h) (s.h)_+ / (cos theta_h cos theta_s) p(zeta) G(v(zeta), s) dzeta,
+// and G <= 1 / (1 + Lambda_s), R <= 1 with the identity above (for w = s) give rho(s) <= 1 for
+// every sun elevation (the test checks it up to 89.9 deg from the zenith). Without G, rho
+// exceeded 1 for a sun within a few degrees of the horizon (1.4 at 89 deg with wind).
+//
+// Grazing views. The unshadowed glint grew as 1 / cos theta_v (a clamp of cos theta_v used to
+// stop it at 100 times): a white glitter column up to a hard edge at the horizon. With G the
+// denominator is cos theta_v (1 + Lambda_v + Lambda_s) = cos theta_v (1 + Lambda_v)
+// + cos theta_v Lambda_s, and cos theta_v (1 + Lambda_v) -> sigma / (2 sqrt(pi)) as theta_v ->
+// 90 deg (the projected area of the facets facing a horizontal ray: E[max(0, -q)] for a slope q
+// of standard deviation sigma / sqrt(2)), while cos theta_v Lambda_s -> 0. So the glint stays
+// finite at the horizon, L_glint -> E R p sqrt(pi) / (2 cos^4 theta_h sigma), without any clamp:
+// FlatSeaSmithFacingArea evaluates cos theta (1 + Lambda) in a form that is exact at 90 deg.
+// The sun at or below the horizon shadows every facet (Lambda_s -> inf): no glint.
 //
 // Slope pdf: isotropic Gaussian with Cox & Munk's total mean square slope (both directions,
 // clean surface, wind speed U in m/s): sigma^2 = <eta_x^2 + eta_y^2> = 0.003 + 5.12e-3 U,
@@ -62,13 +105,47 @@ const Number COX_MUNK_SLOPE_VARIANCE_PER_WIND_SPEED = 5.12e-3;  // s/m
 // (Cox & Munk's never goes below 0.003).
 const Number FLAT_SEA_MIN_SLOPE_VARIANCE = 1.0e-6;
 
-// Grazing views: cos theta_v in the glint's denominator is clamped to this (about 0.57 deg of
-// elevation), so the unshadowed glint's 1 / cos theta_v factor is at most 100 instead of
-// diverging at the horizon. Placeholder for a shadowing term.
-const Number FLAT_SEA_MIN_COS_VIEW = 0.01;
+// Abramowitz & Stegun (1964), Handbook of Mathematical Functions, 7.1.26 (from Hastings 1955):
+//   erfc(x) = t (a1 + t (a2 + t (a3 + t (a4 + t a5)))) exp(-x^2) + eps(x),  t = 1 / (1 + p x),
+// |eps(x)| <= 1.5e-7 for x >= 0. Dimensionless.
+const Number ERFC_AS_7_1_26_P = 0.3275911;
+const Number ERFC_AS_7_1_26_A1 = 0.254829592;
+const Number ERFC_AS_7_1_26_A2 = -0.284496736;
+const Number ERFC_AS_7_1_26_A3 = 1.421413741;
+const Number ERFC_AS_7_1_26_A4 = -1.453152027;
+const Number ERFC_AS_7_1_26_A5 = 1.061405429;
+
+// Smith's Lambda(a), a = cot theta / sigma (see the top of the file), is evaluated in three
+// ranges. Writing Lambda = exp(-a^2) g(a) / 2 with g(a) = 1 / (a sqrt(pi)) - erfcx(a) and
+// erfcx(a) = exp(a^2) erfc(a) (the exp(-a^2) of both terms factored out, so nothing underflows
+// before the product):
+// - a < FLAT_SEA_SMITH_SPLIT_A: erfcx from A&S 7.1.26's polynomial. Its absolute error on erfc,
+//   1.5e-7, is 7.5e-8 on Lambda, and Lambda >= Lambda(1.2) = 0.0109 here: relative error
+//   <= 7e-6 (measured against mpmath on a 0.02 grid: 2.6e-6). Above the split the polynomial is useless for
+//   Lambda: the cancellation in g grows as 2 a^2 and the polynomial's relative error on erfcx
+//   grows to 38 % as a -> inf (t P(t) -> a1 / (p a) = 0.778 / a instead of 0.564 / a).
+// - FLAT_SEA_SMITH_SPLIT_A <= a < FLAT_SEA_SMITH_MAX_A: Laplace's continued fraction
+//   erfcx(a) = (1 / sqrt(pi)) / (a + (1/2) / (a + (2/2) / (a + (3/2) / (a + ...)))) (A&S 7.1.14).
+//   With r = (1/2) / (a + (2/2) / (a + ...)) (its tail, all terms positive),
+//   g = (1 / a - 1 / (a + r)) / sqrt(pi) = r / (sqrt(pi) a (a + r)): no cancellation at all.
+//   Truncated after FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS terms (the last denominator's tail
+//   set to 0), its relative error is 3.1e-6 at a = 1.2, 1.4e-7 at 2, 4e-13 at 4 (mpmath). The
+//   worst over both ranges, measured by the test against long double: 3.0e-6.
+// - a >= FLAT_SEA_SMITH_MAX_A: Lambda = 0. The asymptotic series,
+//   Lambda ~ exp(-a^2) / (2 sqrt(pi) a^3) (1 - 3 / (2 a^2) + ...), gives Lambda(6) = 3e-19,
+//   below double precision's epsilon relative to the 1 it is added to; it also covers the zenith
+//   (sin theta = 0, a = inf) without a division by 0.
+// - a < FLAT_SEA_SMITH_MIN_A (grazing, cot theta < 1e-9 sigma): a is raised to it, so that
+//   Lambda <= 1 / (2 sqrt(pi) 1e-9) = 2.8e8 stays finite (also in single precision); the
+//   glint's denominator does not use Lambda_v (see FlatSeaSmithFacingArea), and a Lambda_s this
+//   large already makes the glint negligible.
+const Number FLAT_SEA_SMITH_SPLIT_A = 1.2;
+const int FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS = 24;
+const Number FLAT_SEA_SMITH_MAX_A = 6.0;
+const Number FLAT_SEA_SMITH_MIN_A = 1.0e-9;
 
 // Facets steeper than acos(0.01) = 89.4 deg are ignored; this only avoids dividing by h.z ~ 0
-// (for v = -s, or the sun below the horizon), since p(zeta) underflows to 0 long before.
+// (for v = -s, or v and s both near the horizon), since p(zeta) underflows to 0 long before.
 const Number FLAT_SEA_MIN_FACET_COS = 0.01;
 
 // A deep-water reflectance for callers without their own, dimensionless, per channel: the sea
@@ -105,11 +182,87 @@ Number FlatSeaSlopePdf(IN(Number) zeta_x, IN(Number) zeta_y, IN(Number) slope_va
   return exp(-(zeta_x * zeta_x + zeta_y * zeta_y) / sigma2) / (PI * sigma2);
 }
 
-// Sun glint per unit solar irradiance, sr^-1: R(v.h) p(zeta) / (4 cos^4 theta_h cos theta_v),
+// exp(x^2) erfc(x) (dimensionless) for x >= 0, from A&S 7.1.26's polynomial: accurate only in
+// the sense that its product with exp(-x^2) is erfc(x) within 1.5e-7 (see ERFC_AS_7_1_26_P).
+Number FlatSeaScaledErfcPolynomial(IN(Number) x) {
+  Number t = 1.0 / (1.0 + ERFC_AS_7_1_26_P * x);
+  return t * (ERFC_AS_7_1_26_A1 + t * (ERFC_AS_7_1_26_A2 + t * (ERFC_AS_7_1_26_A3 +
+         t * (ERFC_AS_7_1_26_A4 + t * ERFC_AS_7_1_26_A5))));
+}
+
+// Complementary error function (GLSL has none), dimensionless, absolute error <= 1.5e-7:
+// A&S 7.1.26 for x >= 0 and erfc(x) = 2 - erfc(-x) below.
+Number FlatSeaErfc(IN(Number) x) {
+  Number abs_x = abs(x);
+  Number value = exp(-abs_x * abs_x) * FlatSeaScaledErfcPolynomial(abs_x);
+  return x < 0.0 ? 2.0 - value : value;
+}
+
+// g(a) = 1 / (a sqrt(pi)) - exp(a^2) erfc(a) = 2 exp(a^2) Lambda(a), for
+// FLAT_SEA_SMITH_SPLIT_A <= a < FLAT_SEA_SMITH_MAX_A, from the continued fraction's tail r
+// (see FLAT_SEA_SMITH_SPLIT_A), evaluated from its last term up.
+Number FlatSeaSmithScaledLambdaTail(IN(Number) a) {
+  Number tail = 0.0;
+  for (int k = FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS; k >= 1; --k) {
+    tail = 0.5 * Number(k) / (a + tail);
+  }
+  return tail / (sqrt(PI) * a * (a + tail));
+}
+
+// sigma sin theta (dimensionless): the denominator of a = cot theta / sigma, for a direction of
+// cos theta = cos_theta (clamped to [0, 1]) and the total mean square slope slope_variance.
+Number FlatSeaSmithSigmaSin(IN(Number) cos_theta, IN(Number) slope_variance) {
+  Number cos_t = clamp(cos_theta, 0.0, 1.0);
+  return sqrt(max(slope_variance, FLAT_SEA_MIN_SLOPE_VARIANCE) * (1.0 - cos_t * cos_t));
+}
+
+// Smith's Lambda (dimensionless, paper eq. 8) for a direction of cos theta = cos_theta from the
+// mean normal (+z; clamped to [0, 1]) over the isotropic Gaussian slopes of total mean square
+// slope slope_variance: 0 at the zenith, 2.8e8 at most at the horizon (FLAT_SEA_SMITH_MIN_A).
+Number FlatSeaSmithLambda(IN(Number) cos_theta, IN(Number) slope_variance) {
+  Number cos_t = clamp(cos_theta, 0.0, 1.0);
+  Number sigma_sin = FlatSeaSmithSigmaSin(cos_t, slope_variance);
+  if (cos_t >= FLAT_SEA_SMITH_MAX_A * sigma_sin) {
+    return 0.0;
+  }
+  Number a = max(cos_t / sigma_sin, FLAT_SEA_SMITH_MIN_A);
+  Number scaled = a < FLAT_SEA_SMITH_SPLIT_A ?
+      1.0 / (a * sqrt(PI)) - FlatSeaScaledErfcPolynomial(a) : FlatSeaSmithScaledLambdaTail(a);
+  return 0.5 * exp(-a * a) * scaled;
+}
+
+// cos theta (1 + Lambda(theta)), dimensionless: the area of the facets facing a direction of
+// cos theta = cos_theta (clamped to [0, 1]), projected onto the plane normal to it, per unit
+// horizontal area (see the top of the file). Finite and exact at the horizon, where it is
+// sigma / (2 sqrt(pi)): below FLAT_SEA_SMITH_SPLIT_A, cos theta Lambda is written
+// exp(-a^2) (sigma sin theta / sqrt(pi) - cos theta erfcx(a)) / 2, using cos theta / a =
+// sigma sin theta, so no 0 * inf appears. Positive: at least max(cos theta, sigma sin theta /
+// (2 sqrt(pi))) (for the minimum slope variance, 2.8e-4 at the horizon).
+Number FlatSeaSmithFacingArea(IN(Number) cos_theta, IN(Number) slope_variance) {
+  Number cos_t = clamp(cos_theta, 0.0, 1.0);
+  Number sigma_sin = FlatSeaSmithSigmaSin(cos_t, slope_variance);
+  if (cos_t >= FLAT_SEA_SMITH_MAX_A * sigma_sin) {
+    return cos_t;
+  }
+  Number a = cos_t / sigma_sin;  // sigma_sin > 0 here.
+  Number cos_lambda_scaled = a < FLAT_SEA_SMITH_SPLIT_A ?
+      sigma_sin / sqrt(PI) - cos_t * FlatSeaScaledErfcPolynomial(a) :
+      cos_t * FlatSeaSmithScaledLambdaTail(a);
+  return cos_t + 0.5 * exp(-a * a) * cos_lambda_scaled;
+}
+
+// Sun glint per unit solar irradiance, sr^-1:
+//   R(v.h) p(zeta) / (4 cos^4 theta_h cos theta_v (1 + Lambda_v + Lambda_s)),
 // so that L_glint = FlatSeaGlintFactor * E with E the sun's irradiance on a surface facing it
-// (the BRDF is this divided by cos theta_s). 0 when no facet up to 89.4 deg mirrors the sun into
-// the eye; cos theta_v is clamped to FLAT_SEA_MIN_COS_VIEW. Finite for all unit inputs.
+// (the BRDF is this divided by cos theta_s). The denominator's cos theta_v (1 + Lambda_v +
+// Lambda_s) is evaluated as FlatSeaSmithFacingArea(v) + cos theta_v Lambda_s, which is finite
+// and positive down to cos theta_v = 0 (no clamp; view_dir.z < 0 counts as 0). 0 when the sun is
+// at or below the horizon (fully shadowed) or no facet up to 89.4 deg mirrors the sun into the
+// eye. Finite for all unit inputs.
 Number FlatSeaGlintFactor(IN(vec3) view_dir, IN(vec3) sun_dir, IN(Number) slope_variance) {
+  if (sun_dir.z <= 0.0) {
+    return 0.0;
+  }
   vec3 half_sum = view_dir + sun_dir;  // 2 cos(theta_d) h: not normalised.
   Number half_length = length(half_sum);
   if (half_sum.z <= FLAT_SEA_MIN_FACET_COS * half_length) {
@@ -120,10 +273,12 @@ Number FlatSeaGlintFactor(IN(vec3) view_dir, IN(vec3) sun_dir, IN(Number) slope_
   Number zeta_x = -half_sum.x / half_sum.z;
   Number zeta_y = -half_sum.y / half_sum.z;
   Number fresnel = FlatSeaFresnel(dot(view_dir, half_sum) / half_length);
-  Number cos_v = max(view_dir.z, FLAT_SEA_MIN_COS_VIEW);
+  Number cos_v = max(view_dir.z, 0.0);
+  Number masked_cos_v = FlatSeaSmithFacingArea(cos_v, slope_variance) +
+                        cos_v * FlatSeaSmithLambda(sun_dir.z, slope_variance);
   Number cos2_h = cos_h * cos_h;
   return fresnel * FlatSeaSlopePdf(zeta_x, zeta_y, slope_variance) /
-         (4.0 * cos2_h * cos2_h * cos_v);
+         (4.0 * cos2_h * cos2_h * masked_cos_v);
 }
 
 // Sun glint radiance, W m^-2 sr^-1 nm^-1, under the analytic sun (its transmitted irradiance,
