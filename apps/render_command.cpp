@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 #include "commands.hpp"
 #include "thalassa/thalassa.hpp"
@@ -28,8 +29,43 @@ std::string check_output(const std::string& option, const std::string& path,
   std::error_code ec;
   if (!folder.empty() && !fs::is_directory(folder, ec))
     return option + " " + path + ": folder " + folder.string() + " does not exist";
+  if (fs::is_directory(path, ec)) return option + " " + path + ": is a folder, expected a file";
   return "";
 }
+
+// A name beside `path` for an output that is complete but not yet in place.
+std::string pending_path(const std::string& path) {
+  const fs::path target(path);
+  return (target.parent_path() / ("." + target.stem().string() + ".pending-" +
+                                  std::to_string(getpid()) + target.extension().string()))
+      .string();
+}
+
+// The outputs of one run appear together or not at all: each is written whole to a pending
+// name, and only when all are written are they renamed into place.
+class PendingOutputs {
+ public:
+  ~PendingOutputs() {
+    std::error_code ec;
+    for (const auto& [pending, final_path] : outputs_) fs::remove(pending, ec);
+  }
+  // The name to write `final_path`'s content to.
+  std::string add(const std::string& final_path) {
+    outputs_.emplace_back(pending_path(final_path), final_path);
+    return outputs_.back().first;
+  }
+  void commit() {
+    for (const auto& [pending, final_path] : outputs_) {
+      std::error_code ec;
+      fs::rename(pending, final_path, ec);
+      if (ec) throw FileError(final_path + ": cannot move into place: " + ec.message());
+    }
+    outputs_.clear();
+  }
+
+ private:
+  std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
+};
 
 std::string format_number(double value) {
   char text[64];
@@ -89,6 +125,12 @@ int run_render(const RenderArgs& args) {
     if (args.float_exr) builder.set("image.exr_type=float");
     scene = builder.build();
     merged = builder.merged_json();
+    // Skies from HDR images arrive with the environment-map provider (issue 4); until then a
+    // given sky.exr is refused before any work rather than silently replaced by the model sky.
+    if (!scene.sky.exr.empty())
+      throw SceneError(builder.source_of("sky.exr") +
+                       ": sky.exr: expected an empty value (skies from HDR images are not "
+                       "supported by this version yet), got \"" + scene.sky.exr + "\"");
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -96,9 +138,18 @@ int run_render(const RenderArgs& args) {
   const std::string png = args.no_png ? std::string()
                           : args.png  ? *args.png
                                       : fs::path(args.exr).replace_extension(".png").string();
-  for (const std::string& problem :
-       {check_output("-o", args.exr, ".exr"), png.empty() ? "" : check_output("--png", png, ".png"),
-        args.stats.empty() ? "" : check_output("--stats", args.stats, "")}) {
+  std::vector<std::string> problems = {
+      check_output("-o", args.exr, ".exr"), png.empty() ? "" : check_output("--png", png, ".png"),
+      args.stats.empty() ? "" : check_output("--stats", args.stats, "")};
+  // The image outputs differ by extension; the statistics may name either of them.
+  if (!args.stats.empty()) {
+    std::error_code ec;
+    const fs::path stats = fs::weakly_canonical(args.stats, ec);
+    if (stats == fs::weakly_canonical(args.exr, ec) ||
+        (!png.empty() && stats == fs::weakly_canonical(png, ec)))
+      problems.push_back("--stats " + args.stats + ": the same file as an image output");
+  }
+  for (const std::string& problem : problems) {
     if (!problem.empty()) {
       print_error(problem);
       return kExitInvalidInput;
@@ -151,9 +202,12 @@ int run_render(const RenderArgs& args) {
   for (const auto& [name, ms] : stats.passes)
     passes += (passes.empty() ? "" : " ") + name + "=" + format_number(ms);
   metadata.emplace_back("thalassa:passes_ms", passes);
-  write_exr(args.exr, image, scene.image.exr_type, metadata);
-  if (!png.empty()) write_png(png, image, scene.image.exposure, {{"Software", "thalassa"}});
-  if (!args.stats.empty()) write_text_atomically(args.stats, stats_json(stats));
+  PendingOutputs outputs;
+  write_exr(outputs.add(args.exr), image, scene.image.exr_type, metadata);
+  if (!png.empty())
+    write_png(outputs.add(png), image, scene.image.exposure, {{"Software", "thalassa"}});
+  if (!args.stats.empty()) write_text_atomically(outputs.add(args.stats), stats_json(stats));
+  outputs.commit();
   return kExitOk;
 }
 

@@ -1,6 +1,9 @@
 #include "thalassa/engine/gl/hdr_target.hpp"
 
-#include <cstring>
+#include "thalassa/engine/gl/state_guard.hpp"
+
+#include <algorithm>
+#include <limits>
 #include <string>
 
 namespace thalassa::gl {
@@ -31,6 +34,7 @@ HdrTarget::HdrTarget(int width, int height)
 void HdrTarget::begin() {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.get());
   glViewport(0, 0, width_, height_);
+  set_pass_state();
   glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_GREATER);
@@ -42,17 +46,28 @@ void HdrTarget::begin() {
 }
 
 std::vector<float> HdrTarget::read_rgba_top_down() const {
+  const StateGuard guard;  // the pack state below is a host's to keep
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_PACK_SKIP_ROWS, 0);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
   const std::size_t row = static_cast<std::size_t>(width_) * 4;
-  std::vector<float> bottom_up(row * static_cast<std::size_t>(height_));
-  // RGBA float rows are 16-byte multiples: aligned for any GL_PACK_ALIGNMENT a host has set.
-  glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT,
-                    static_cast<GLsizei>(bottom_up.size() * sizeof(float)), bottom_up.data());
+  std::vector<float> pixels(row * static_cast<std::size_t>(height_));
+  const std::size_t bytes = pixels.size() * sizeof(float);
+  // The scene caps images at 8192 x 8192 (1 GiB of RGBA floats), below GLsizei's 2 GiB.
+  if (bytes > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
+    throw GlError("HDR target read-back: " + std::to_string(width_) + "x" +
+                  std::to_string(height_) + " is larger than one GL read can return");
+  glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(bytes),
+                    pixels.data());
   check_error("HDR target read-back");
-  std::vector<float> top_down(bottom_up.size());
-  for (int y = 0; y < height_; ++y)
-    std::memcpy(&top_down[static_cast<std::size_t>(y) * row],
-                &bottom_up[static_cast<std::size_t>(height_ - 1 - y) * row], row * sizeof(float));
-  return top_down;
+  // GL's rows run bottom-up: flip in place (no second copy of a possibly large image).
+  for (int y = 0; y < height_ / 2; ++y)
+    std::swap_ranges(pixels.begin() + static_cast<std::ptrdiff_t>(y * row),
+                     pixels.begin() + static_cast<std::ptrdiff_t>((y + 1) * row),
+                     pixels.begin() + static_cast<std::ptrdiff_t>((height_ - 1 - y) * row));
+  return pixels;
 }
 
 }  // namespace thalassa::gl

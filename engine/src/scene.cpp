@@ -168,9 +168,9 @@ const std::vector<KeyDesc>& key_table() {
   using S = Scene;
   static const std::vector<KeyDesc> table = {
       integer<&S::image, &ImageSettings::width>(
-          "image.width", {1, 16384}, "pixels", "960", "Width of the rendered image."),
+          "image.width", {1, 8192}, "pixels", "960", "Width of the rendered image."),
       integer<&S::image, &ImageSettings::height>(
-          "image.height", {1, 16384}, "pixels", "540", "Height of the rendered image."),
+          "image.height", {1, 8192}, "pixels", "540", "Height of the rendered image."),
       number<&S::image, &ImageSettings::exposure>(
           "image.exposure", {0, 1e6, true}, "1/(W m^-2 sr^-1 nm^-1)", "10",
           "Scale of radiance before the PNG tone curve 1 - exp(-exposure * L); the EXR is not "
@@ -193,7 +193,7 @@ const std::vector<KeyDesc>& key_table() {
           "Elevation of the view direction above the horizontal; -90 looks straight down."),
       number<&S::camera, &CameraSettings::roll>(
           "camera.roll", {-180, 180}, kDegrees, "0",
-          "Rotation of the image about the view direction, clockwise as seen by the camera."),
+          "Bank about the view direction; positive banks right, turning the horizon counterclockwise in the image."),
       number<&S::camera, &CameraSettings::fov_y>(
           "camera.fov_y", {0.01, 179}, kDegrees, "45", "Vertical field of view."),
 
@@ -680,8 +680,41 @@ SceneBuilder& SceneBuilder::operator=(SceneBuilder&& other) noexcept {
 
 void SceneBuilder::load_text(std::string_view json_text, std::string_view source) {
   json doc;
+  // JSON allows an object to repeat a key and nlohmann keeps the last; a scene must not (one
+  // key, one value), so repeats are caught while parsing. `path` holds the keys of the objects
+  // being parsed; `seen` the keys already met in each.
+  std::vector<std::string> path;
+  std::vector<std::vector<std::string>> seen;
+  const json::parser_callback_t no_repeated_keys = [&](int /*depth*/, json::parse_event_t event,
+                                                       json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start:
+        seen.emplace_back();
+        break;
+      case json::parse_event_t::key: {
+        const std::string key = parsed.get<std::string>();
+        auto& keys = seen.back();
+        const std::size_t depth = seen.size() - 1;
+        path.resize(depth);
+        path.push_back(key);
+        if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+          std::string dotted;
+          for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
+          fail(source, dotted, "each key once", "\"" + key + "\" a second time");
+        }
+        keys.push_back(key);
+        break;
+      }
+      case json::parse_event_t::object_end:
+        seen.pop_back();
+        break;
+      default:
+        break;
+    }
+    return true;
+  };
   try {
-    doc = json::parse(json_text);
+    doc = json::parse(json_text, no_repeated_keys);
   } catch (const json::parse_error& e) {
     fail(std::string(source) + ":" + line_column(json_text, e.byte), "", "valid JSON",
          parse_reason(e));
@@ -760,6 +793,11 @@ Scene SceneBuilder::build() const {
     s.sun.azimuth = a.azimuth;
   }
   return s;
+}
+
+std::string SceneBuilder::source_of(std::string_view key) const {
+  auto it = impl_->given.find(key);
+  return it != impl_->given.end() ? it->second.source : std::string("defaults");
 }
 
 std::string SceneBuilder::merged_json() const {

@@ -31,8 +31,13 @@ std::vector<fs::path> default_roots(std::vector<fs::path> extra) {
     fs::path library = fs::canonical(info.dli_fname, ec);
     if (!ec) candidates.push_back(library.parent_path() / THALASSA_SHADER_RELATIVE_DIR);
   }
-  candidates.emplace_back(THALASSA_SHADER_INSTALL_DIR);
-  candidates.emplace_back(THALASSA_SHADER_SOURCE_DIR);
+  // THALASSA_SHADER_BUILTIN_PATHS=0 leaves out the folders compiled into the library, so that
+  // a relocated install (and the package test) can prove it uses its own shaders.
+  const char* builtin = std::getenv("THALASSA_SHADER_BUILTIN_PATHS");
+  if (builtin == nullptr || std::string(builtin) != "0") {
+    candidates.emplace_back(THALASSA_SHADER_INSTALL_DIR);
+    candidates.emplace_back(THALASSA_SHADER_SOURCE_DIR);
+  }
   std::vector<fs::path> roots;
   for (const auto& candidate : candidates) {
     std::error_code ec;

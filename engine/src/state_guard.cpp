@@ -3,8 +3,29 @@
 #include "thalassa/engine/gl/scene_graph.hpp"
 
 namespace thalassa::gl {
+namespace {
+
+// The on/off capabilities set_pass_state() turns off, in the order StateGuard saves them.
+constexpr GLenum kCapabilities[] = {GL_BLEND,
+                                    GL_SCISSOR_TEST,
+                                    GL_STENCIL_TEST,
+                                    GL_CULL_FACE,
+                                    GL_POLYGON_OFFSET_FILL,
+                                    GL_SAMPLE_ALPHA_TO_COVERAGE,
+                                    GL_RASTERIZER_DISCARD,
+                                    GL_FRAMEBUFFER_SRGB};
+
+}  // namespace
+
+void set_pass_state() {
+  for (GLenum capability : kCapabilities) glDisable(capability);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glBindSampler(0, 0);
+}
 
 StateGuard::StateGuard() {
+  static_assert(sizeof(kCapabilities) / sizeof(kCapabilities[0]) == kCapabilityCount);
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_framebuffer_);
   glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_framebuffer_);
   glGetIntegerv(GL_VIEWPORT, viewport_);
@@ -15,11 +36,20 @@ StateGuard::StateGuard() {
   glGetIntegerv(GL_DEPTH_FUNC, &depth_func_);
   glGetIntegerv(GL_CLIP_ORIGIN, &clip_origin_);
   glGetIntegerv(GL_CLIP_DEPTH_MODE, &clip_depth_mode_);
+  for (int i = 0; i < kCapabilityCount; ++i) capabilities_[i] = glIsEnabled(kCapabilities[i]);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
+  glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
   glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameBinding, &uniform_buffer_);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
   glActiveTexture(GL_TEXTURE0);
   glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_unit0_);
+  glGetIntegerv(GL_SAMPLER_BINDING, &sampler_unit0_);
   glActiveTexture(static_cast<GLenum>(active_texture_));
+  glGetIntegerv(GL_PACK_ALIGNMENT, &pack_alignment_);
+  glGetIntegerv(GL_PACK_ROW_LENGTH, &pack_row_length_);
+  glGetIntegerv(GL_PACK_SKIP_ROWS, &pack_skip_rows_);
+  glGetIntegerv(GL_PACK_SKIP_PIXELS, &pack_skip_pixels_);
+  glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
 }
 
 StateGuard::~StateGuard() {
@@ -32,10 +62,21 @@ StateGuard::~StateGuard() {
   glDepthMask(depth_mask_);
   glDepthFunc(static_cast<GLenum>(depth_func_));
   glClipControl(static_cast<GLenum>(clip_origin_), static_cast<GLenum>(clip_depth_mode_));
+  for (int i = 0; i < kCapabilityCount; ++i)
+    if (capabilities_[i]) glEnable(kCapabilities[i]); else glDisable(kCapabilities[i]);
+  glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
+  // Core profile: one mode for both faces, so the front face's value stands for both.
+  glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
   glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, static_cast<GLuint>(uniform_buffer_));
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture_unit0_));
+  glBindSampler(0, static_cast<GLuint>(sampler_unit0_));
   glActiveTexture(static_cast<GLenum>(active_texture_));
+  glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
+  glPixelStorei(GL_PACK_ROW_LENGTH, pack_row_length_);
+  glPixelStorei(GL_PACK_SKIP_ROWS, pack_skip_rows_);
+  glPixelStorei(GL_PACK_SKIP_PIXELS, pack_skip_pixels_);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack_buffer_));
 }
 
 }  // namespace thalassa::gl

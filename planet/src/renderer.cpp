@@ -122,7 +122,11 @@ Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions optio
 // GL objects are deleted in the renderer's own context (a no-op for a host's context, which
 // the host must keep current).
 Renderer::~Renderer() {
-  if (impl_) impl_->context.make_current();
+  try {
+    if (impl_) impl_->context.make_current();
+  } catch (const ContextError&) {
+    // A context that cannot be made current any more has lost its objects with it.
+  }
 }
 
 void Renderer::render() {
@@ -164,6 +168,7 @@ void Renderer::present(unsigned framebuffer, int width, int height) {
   const gl::StateGuard guard;
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
   glViewport(0, 0, width, height);
+  gl::set_pass_state();
   glDisable(GL_DEPTH_TEST);
   glUseProgram(program);
   glBindTextureUnit(0, m.target.color_texture());

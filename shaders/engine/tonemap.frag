@@ -11,8 +11,13 @@ float SrgbEncode(float x) {
   return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1.0 / 2.4) - 0.055;
 }
 
+// Like thalassa::tone_map: non-finite or negative radiance shows as 0 (GLSL's max(NaN, 0) is
+// undefined, so the test is explicit).
+float Sanitize(float x) { return isnan(x) || isinf(x) || x <= 0.0 ? 0.0 : x; }
+
 void main() {
-  const vec3 radiance = max(texture(hdr_frame, screen_uv).rgb, vec3(0.0));
+  const vec3 texel = texture(hdr_frame, screen_uv).rgb;
+  const vec3 radiance = vec3(Sanitize(texel.r), Sanitize(texel.g), Sanitize(texel.b));
   const vec3 v = 1.0 - exp(-exposure * radiance);
   color = vec4(SrgbEncode(v.r), SrgbEncode(v.g), SrgbEncode(v.b), 1.0);
 }

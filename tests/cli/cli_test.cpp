@@ -33,8 +33,8 @@ class Cli : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // Runs the program in dir_ with `args` (shell words), capturing stderr.
-  Result run(const std::string& args) {
-    const std::string command = "cd '" + dir_.string() + "' && '" THALASSA_EXE "' " + args +
+  Result run(const std::string& args, const std::string& prefix = "") {
+    const std::string command = "cd '" + dir_.string() + "' && " + prefix + "'" THALASSA_EXE "' " + args +
                                 " 2> stderr.txt > stdout.txt";
     const int raw = std::system(command.c_str());
     Result result;
@@ -158,7 +158,11 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   expect_invalid(run("render --set nothing.here=1"), {"--set", "nothing.here"});
   expect_invalid(run("render -o out.png"), {"-o", ".exr"});
   expect_invalid(run("render -o nowhere/out.exr"), {"nowhere"});
-  expect_invalid(run("render --set sky.exr=noon.exr"), {"sky.exr", "noon.exr"});
+  expect_invalid(run("render -o a.exr --stats a.exr"), {"--stats", "same file"});
+  fs::create_directory(dir_ / "folder.png");
+  expect_invalid(run("render -o a.exr --png folder.png"), {"--png", "folder"});
+  fs::remove(dir_ / "folder.png");
+  expect_invalid(run("render --set sky.exr=noon.exr"), {"--set: sky.exr", "noon.exr"});
   EXPECT_EQ(run("render --backend vulkan").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{});
@@ -176,6 +180,17 @@ TEST_F(Cli, InfoPrintsBackendAndCapabilities) {
 }
 
 #ifdef THALASSA_TEST_BOTH_HEADLESS_BACKENDS  // a build with both EGL and OSMesa
+// With no display and an EGL that finds no driver (GLVND pointed at no vendor library), the
+// default backend falls back to OSMesa and the render still succeeds.
+TEST_F(Cli, DefaultFallsBackToOsMesaWithoutEgl) {
+  const Result r = run("render " + kSmall +
+                       " --no-png --stats s.json", "env -u DISPLAY -u WAYLAND_DISPLAY "
+                       "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(dir_ / "s.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["backend"], "osmesa");
+}
+
 TEST_F(Cli, BothHeadlessBackendsRenderTheSameImage) {
   ASSERT_EQ(run("render " + kSmall + " --backend egl -o egl.exr --no-png --float").status, 0);
   ASSERT_EQ(run("render " + kSmall + " --backend osmesa -o osmesa.exr --no-png --float").status, 0);

@@ -34,6 +34,16 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   glClipControl(GL_LOWER_LEFT, GL_NEGATIVE_ONE_TO_ONE);
+  // State that would spoil thalassa's frame if its passes relied on GL's defaults.
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ZERO, GL_ONE);  // would keep the target's old contents
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, 0, 1, 1);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT_AND_BACK);
+  glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+  glEnable(GL_FRAMEBUFFER_SRGB);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 7);
   auto expect_host_state = [&](const char* after) {
     GLint value = 0, viewport[4] = {0, 0, 0, 0};
     GLboolean mask = GL_TRUE;
@@ -53,6 +63,15 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
     EXPECT_EQ(mask, GL_FALSE) << after;
     glGetIntegerv(GL_CLIP_DEPTH_MODE, &value);
     EXPECT_EQ(value, GL_NEGATIVE_ONE_TO_ONE) << after;
+    EXPECT_TRUE(glIsEnabled(GL_BLEND)) << after;
+    EXPECT_TRUE(glIsEnabled(GL_SCISSOR_TEST)) << after;
+    EXPECT_TRUE(glIsEnabled(GL_CULL_FACE)) << after;
+    EXPECT_TRUE(glIsEnabled(GL_FRAMEBUFFER_SRGB)) << after;
+    GLboolean color_mask[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+    glGetBooleanv(GL_COLOR_WRITEMASK, color_mask);
+    EXPECT_EQ(color_mask[1], GL_FALSE) << after;
+    glGetIntegerv(GL_PACK_ROW_LENGTH, &value);
+    EXPECT_EQ(value, 7) << after;
   };
 
   const Scene scene = test::scene_from(R"({"image": {"width": 64, "height": 48}})");
@@ -61,11 +80,13 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   expect_host_state("after render()");
   renderer.present(fbo, width, height);
   expect_host_state("after present()");
+  const Image hdr = renderer.image();
+  expect_host_state("after image()");
   std::vector<unsigned char> pixels(width * height * 4);
+  glPixelStorei(GL_PACK_ROW_LENGTH, 0);  // the host reads its own pixels with its own state
   glGetTextureImage(color, 0, GL_RGBA, GL_UNSIGNED_BYTE, int(pixels.size()), pixels.data());
 
   // The host's pixels are the PNG's tone mapping of thalassa's HDR frame (GL rows bottom-up).
-  const Image hdr = renderer.image();
   int mismatches = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)

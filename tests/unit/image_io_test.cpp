@@ -125,6 +125,12 @@ TEST_F(ImageIo, FailedWriteLeavesNothingBehind) {
   broken.rgba.resize(3);
   EXPECT_THROW(write_png(path("b.png"), broken, 1.0), ImageError);
   EXPECT_EQ(file_count(), 0u);
+  // A failure after the temporary is complete: renaming it over a non-empty folder fails, and
+  // the temporary must go.
+  fs::create_directories(dir_ / "taken.exr" / "inside");
+  EXPECT_THROW(write_exr(path("taken.exr"), image, ExrPixelType::Half), ImageError);
+  EXPECT_THROW(write_text_atomically(path("taken.exr"), "{}"), FileError);
+  EXPECT_EQ(file_count(), 1u);  // only the folder
 }
 
 TEST_F(ImageIo, OverwriteIsAtomic) {

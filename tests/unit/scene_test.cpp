@@ -267,6 +267,34 @@ TEST(SceneSet, NumbersBareAndQuotedStrings) {
   EXPECT_EQ(with_sets({"sky.exr="}).sky.exr, "");
 }
 
+TEST(SceneErrors, RepeatedKeysAreRefused) {
+  // JSON parsers keep the last of two equal keys; a scene names each value once.
+  auto error_of = [](const std::string& text) {
+    try {
+      SceneBuilder b;
+      b.load_text(text, "s.json");
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(error_of(R"({"camera": {"height": 4, "height": 5}})"),
+            "s.json: camera.height: expected each key once, got \"height\" a second time");
+  EXPECT_EQ(error_of(R"({"camera": {"height": 4}, "camera": {"pitch": 5}})"),
+            "s.json: camera: expected each key once, got \"camera\" a second time");
+  // The same name in different sections is not a repeat.
+  EXPECT_EQ(error_of(R"({"camera": {"height": 4}, "planet": {"radius": 7e6}})"), "no error");
+}
+
+TEST(SceneBuilder, SourceOfNamesWhereAValueCameFrom) {
+  SceneBuilder b;
+  b.load_text(R"({"camera": {"height": 4}})", "s.json");
+  b.set("sun.zenith=10");
+  EXPECT_EQ(b.source_of("camera.height"), "s.json");
+  EXPECT_EQ(b.source_of("sun.zenith"), "--set");
+  EXPECT_EQ(b.source_of("camera.lat"), "defaults");
+}
+
 TEST(SceneSet, Errors) {
   std::string msg = set_error("camera.height=abc");
   EXPECT_HAS(msg, "--set");
@@ -294,7 +322,7 @@ TEST(SceneSet, Errors) {
   EXPECT_EQ(msg.find("did you mean"), std::string::npos);
 
   msg = set_error("image.width=2.5");
-  EXPECT_HAS(msg, "--set: image.width: expected an integer in [1, 16384] (pixels), got 2.5");
+  EXPECT_HAS(msg, "--set: image.width: expected an integer in [1, 8192] (pixels), got 2.5");
 
   msg = set_error("ocean.spectrum=jonswap");
   EXPECT_HAS(msg, "--set: ocean.spectrum: expected one of \"pierson-moskowitz\", \"omega-2\"");
@@ -332,7 +360,7 @@ TEST(SceneErrors, UnknownKeysSuggestTheClosest) {
 
 TEST(SceneErrors, WrongTypes) {
   std::string msg = text_error(R"({"image": {"width": 2.5}})");
-  EXPECT_HAS(msg, "s.json: image.width: expected an integer in [1, 16384] (pixels), got 2.5");
+  EXPECT_HAS(msg, "s.json: image.width: expected an integer in [1, 8192] (pixels), got 2.5");
   EXPECT_HAS(text_error(R"({"image": {"width": true}})"), "image.width: expected an integer");
   EXPECT_HAS(text_error(R"({"image": {"width": "960"}})"), "got \"960\"");
   EXPECT_HAS(text_error(R"({"camera": {"height": "high"}})"),

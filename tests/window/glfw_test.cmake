@@ -1,3 +1,4 @@
+cmake_minimum_required(VERSION 3.25)
 # A window through GLFW under Xvfb: `thalassa render --backend glfw` opens a window, shows the
 # frame, writes the EXR; the frame must equal the headless one (same Mesa rasteriser).
 file(REMOVE_RECURSE ${WORK})

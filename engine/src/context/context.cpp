@@ -13,8 +13,9 @@ class HostContext final : public GlContext {
   GlProcAddressFn proc_address() const override { return get_proc_address_; }
   Backend backend() const override { return Backend::Host; }
   std::string description() const override { return description_; }
-  // The host decides which context is current; thalassa never changes it.
-  void make_current() override {}
+  // The host decides which context is current; thalassa never changes it, but makes sure its
+  // function table is the one loaded through the host's GetProcAddress.
+  void make_current() override { detail::use_gl_functions(get_proc_address_, "host"); }
 
  private:
   GlProcAddressFn get_proc_address_;

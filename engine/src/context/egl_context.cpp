@@ -47,7 +47,9 @@ class EglContext final : public GlContext {
       : display_(display), context_(context), surface_(surface),
         description_(std::move(description)) {}
   ~EglContext() override {
-    eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    // Release only our own context: another one (a host's) may be current on this thread.
+    if (eglGetCurrentContext() == context_)
+      eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     if (surface_ != EGL_NO_SURFACE) eglDestroySurface(display_, surface_);
     eglDestroyContext(display_, context_);
     // No eglTerminate: a platform display is one per device and process, shared by every
@@ -59,6 +61,7 @@ class EglContext final : public GlContext {
   void make_current() override {
     if (!eglMakeCurrent(display_, surface_, surface_, context_))
       throw ContextError("egl: eglMakeCurrent failed: " + egl_error_name(eglGetError()));
+    use_gl_functions(proc_address(), "egl");
   }
 
  private:

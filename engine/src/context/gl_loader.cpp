@@ -14,13 +14,24 @@ void GLAD_API_PTR log_debug_message(GLenum /*source*/, GLenum /*type*/, GLuint /
   std::fprintf(stderr, "thalassa: GL: %s\n", message);
 }
 
+// The GetProcAddress that filled glad's table last.
+GlProcAddressFn loaded_from = nullptr;
+
 }  // namespace
+
+void use_gl_functions(GlProcAddressFn get_proc_address, const std::string& who) {
+  if (get_proc_address == loaded_from) return;
+  if (gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc_address)) == 0)
+    throw ContextError(who + ": glad could not load the OpenGL functions");
+  loaded_from = get_proc_address;
+}
 
 void load_gl_functions(GlProcAddressFn get_proc_address, const std::string& who, bool debug) {
   if (get_proc_address == nullptr) throw ContextError(who + ": no GetProcAddress function");
   // GLADloadfunc and GlProcAddressFn are the same function type: GlProc(*)(const char*).
   const int version = gladLoadGL(reinterpret_cast<GLADloadfunc>(get_proc_address));
   if (version == 0) throw ContextError(who + ": glad could not load the OpenGL functions");
+  loaded_from = get_proc_address;
   const int major = GLAD_VERSION_MAJOR(version);
   const int minor = GLAD_VERSION_MINOR(version);
   if (major * 10 + minor < 45) {

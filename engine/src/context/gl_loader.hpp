@@ -12,4 +12,10 @@ namespace thalassa::detail {
 // `who` when loading fails or the version is below 4.5.
 void load_gl_functions(GlProcAddressFn get_proc_address, const std::string& who, bool debug);
 
+// thalassa has one GL function table for the process. Contexts of one driver share it; a
+// context of another driver (a vendor's EGL beside Mesa's OSMesa) needs its own functions, so
+// making a context current reloads the table when its GetProcAddress differs from the one that
+// filled it last. Cheap when nothing changes.
+void use_gl_functions(GlProcAddressFn get_proc_address, const std::string& who);
+
 }  // namespace thalassa::detail

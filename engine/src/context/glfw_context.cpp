@@ -37,7 +37,10 @@ class GlfwContext final : public GlContext {
     return std::string("GLFW ") + glfwGetVersionString() + " window";
   }
   GlProcAddressFn proc_address() const override { return reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress); }
-  void make_current() override { glfwMakeContextCurrent(window_); }
+  void make_current() override {
+    glfwMakeContextCurrent(window_);
+    use_gl_functions(proc_address(), "glfw");
+  }
   void present() override {
     glfwSwapBuffers(window_);
     glfwPollEvents();

@@ -20,6 +20,7 @@ class OsMesaContext final : public GlContext {
   void make_current() override {
     if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, kSize, kSize))
       throw ContextError("osmesa: OSMesaMakeCurrent failed");
+    use_gl_functions(proc_address(), "osmesa");
   }
 
  private:

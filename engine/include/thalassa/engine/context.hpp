@@ -40,8 +40,8 @@ class ContextError : public std::runtime_error {
 };
 
 struct ContextOptions {
-  int width = 640;   // pixels; the window's size (GLFW), the default framebuffer's (OSMesa)
-  int height = 480;  // pixels
+  int width = 640;   // pixels; the window's size (GLFW only: headless contexts draw only
+  int height = 480;  // pixels   into thalassa's own framebuffers)
   std::string title = "thalassa";
   bool visible = true;  // GLFW only
   bool debug = false;   // request a debug context and log KHR_debug messages to stderr

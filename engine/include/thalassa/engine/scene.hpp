@@ -33,8 +33,8 @@ enum class PlanetShape { Wgs84, Sphere };
 enum class WaveSpectrum { PiersonMoskowitz, OmegaMinus2 };
 
 struct ImageSettings {
-  int width = 960;                         // pixels, [1, 16384]
-  int height = 540;                        // pixels, [1, 16384]
+  int width = 960;                         // pixels, [1, 8192]
+  int height = 540;                        // pixels, [1, 8192]
   double exposure = 10.0;                  // 1 / (W m^-2 sr^-1 nm^-1), (0, 1e6]; docs/scene.md
   ExrPixelType exr_type = ExrPixelType::Half;  // "half" or "float"
 };
@@ -110,6 +110,9 @@ class SceneBuilder {
   // and returns the typed scene, with sun.zenith/azimuth computed from sun.utc when it is set.
   // Each key's own checks already ran in load_text/load_file/set.
   Scene build() const;
+  // Where the current value of `key` came from: the file path, "--set", or "defaults" — for
+  // messages about a valid scene that a later stage cannot use.
+  std::string source_of(std::string_view key) const;
   // The merged document (defaults + file + overrides) as canonical JSON text, for metadata:
   // compact, keys sorted, numbers as doubles and integers as integers. With sun.utc it leaves
   // out sun.zenith and sun.azimuth, so that the text is itself a valid scene of the same Scene.

@@ -1,13 +1,22 @@
-// thalassa — saves the GL state thalassa's passes change and restores it on destruction, so that
-// drawing into a host application's context leaves the host's state as it was: framebuffer
-// bindings, viewport, program, vertex array, depth test/function/mask, clip control (thalassa
-// uses reversed-Z, zero-to-one), the uniform buffer binding 0 and texture unit 0.
+// thalassa — drawing correctly in a context whose state someone else set, and giving that state
+// back. A host application's context may come with blending, scissor, culling, colour masks,
+// sRGB conversion or pixel-pack settings of its own: thalassa's passes set what they rely on
+// (set_pass_state) and a StateGuard restores the host's values afterwards.
 #pragma once
 
 #include "thalassa/engine/gl/gl.hpp"
 
 namespace thalassa::gl {
 
+// Puts the fixed-function state a full-screen HDR pass relies on into a known form: no blending,
+// scissor, stencil, culling, polygon offset, alpha-to-coverage, rasterizer discard or sRGB
+// conversion; colour writes on; filled polygons; no sampler object on texture unit 0.
+void set_pass_state();
+
+// Saves, then restores on destruction: framebuffer bindings, viewport, program, vertex array,
+// depth test/function/mask, clip control (thalassa uses reversed-Z, zero-to-one), everything
+// set_pass_state() changes, the uniform buffer binding 0, texture unit 0 and the pixel-pack
+// state (alignment, row length, skips, pack buffer).
 class StateGuard {
  public:
   StateGuard();
@@ -16,14 +25,20 @@ class StateGuard {
   StateGuard& operator=(const StateGuard&) = delete;
 
  private:
+  static constexpr int kCapabilityCount = 8;
   GLint draw_framebuffer_ = 0, read_framebuffer_ = 0;
   GLint viewport_[4] = {0, 0, 0, 0};
   GLint program_ = 0, vertex_array_ = 0;
   GLboolean depth_test_ = GL_FALSE, depth_mask_ = GL_TRUE;
   GLint depth_func_ = GL_LESS;
   GLint clip_origin_ = GL_LOWER_LEFT, clip_depth_mode_ = GL_NEGATIVE_ONE_TO_ONE;
+  GLboolean capabilities_[kCapabilityCount] = {};
+  GLboolean color_mask_[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
+  GLint polygon_mode_[2] = {GL_FILL, GL_FILL};
   GLint uniform_buffer_ = 0;
-  GLint active_texture_ = GL_TEXTURE0, texture_unit0_ = 0;
+  GLint active_texture_ = GL_TEXTURE0, texture_unit0_ = 0, sampler_unit0_ = 0;
+  GLint pack_alignment_ = 4, pack_row_length_ = 0, pack_skip_rows_ = 0, pack_skip_pixels_ = 0;
+  GLint pack_buffer_ = 0;
 };
 
 }  // namespace thalassa::gl
