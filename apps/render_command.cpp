@@ -192,6 +192,10 @@ int run_render(const RenderArgs& args) {
                               " height=" + format_number(c.height) + " heading=" +
                               format_number(c.heading) + " pitch=" + format_number(c.pitch) +
                               " roll=" + format_number(c.roll) + " fov_y=" + format_number(c.fov_y)},
+      // The sun as drawn (computed from sun.utc when the scene gives a time).
+      {"thalassa:sun", "zenith=" + format_number(scene.sun.zenith) +
+                           " azimuth=" + format_number(scene.sun.azimuth) +
+                           (scene.sun.utc ? " utc=" + *scene.sun.utc : "")},
       {"thalassa:units", "spectral radiance, W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm"},
       {"thalassa:backend", stats.backend},
       {"thalassa:renderer", stats.renderer},

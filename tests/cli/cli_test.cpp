@@ -71,6 +71,7 @@ TEST_F(Cli, DefaultRenderWritesExrAndPng) {
   ASSERT_TRUE(meta.count("thalassa:scene"));
   EXPECT_EQ(nlohmann::json::parse(meta["thalassa:scene"])["image"]["width"], 32);
   EXPECT_TRUE(meta.count("thalassa:camera"));
+  EXPECT_EQ(meta["thalassa:sun"], "zenith=60 azimuth=180");
   EXPECT_TRUE(meta.count("thalassa:frame_ms"));
   for (float v : image.rgba) ASSERT_TRUE(std::isfinite(v));
 }
