@@ -9,28 +9,18 @@
 #include <gtest/gtest.h>
 
 #include "analytic_sky_reference.hpp"
-#include "thalassa/planet/camera_frame.hpp"
+#include "reference_test_support.hpp"
 
 namespace thalassa::glsl {
 namespace {
 
-// Unit direction of a zenith angle and an azimuth (clockwise from north), both in degrees.
-vec3 Direction(double zenith_deg, double azimuth_deg) {
-  return thalassa::sun_direction(zenith_deg, azimuth_deg);
-}
-
-double RelativeDifference(double a, double b) {
-  return std::abs(a - b) / std::max(std::abs(b), std::numeric_limits<double>::min());
-}
+using test::Direction;
+using test::IsFiniteNonNegative;
+using test::RelativeDifference;
 
 double MaxRelativeDifference(const vec3& a, const vec3& b) {
   return std::max({RelativeDifference(a.x, b.x), RelativeDifference(a.y, b.y),
                    RelativeDifference(a.z, b.z)});
-}
-
-bool IsFiniteNonNegative(const vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.0 &&
-         v.y >= 0.0 && v.z >= 0.0;
 }
 
 // D(a, b) = (exp(-a) - exp(-b)) / (b - a) in long double with expm1, the reference for the

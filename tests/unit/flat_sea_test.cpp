@@ -10,24 +10,14 @@
 #include <gtest/gtest.h>
 
 #include "flat_sea_reference.hpp"
-#include "thalassa/planet/camera_frame.hpp"
+#include "reference_test_support.hpp"
 
 namespace thalassa::glsl {
 namespace {
 
-// Unit direction of a zenith angle and an azimuth (clockwise from north), both in degrees.
-vec3 Direction(double zenith_deg, double azimuth_deg) {
-  return thalassa::sun_direction(zenith_deg, azimuth_deg);
-}
-
-double RelativeDifference(double a, double b) {
-  return std::abs(a - b) / std::max(std::abs(b), std::numeric_limits<double>::min());
-}
-
-bool IsFiniteNonNegative(const vec3& v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && v.x >= 0.0 &&
-         v.y >= 0.0 && v.z >= 0.0;
-}
+using test::Direction;
+using test::IsFiniteNonNegative;
+using test::RelativeDifference;
 
 // Fraction of the sun's power (on a horizontal unit area) that the glint sends into the upper
 // hemisphere: rho(s) = integral over v.z > 0 of f(v, s) cos theta_v domega_v, with the BRDF
