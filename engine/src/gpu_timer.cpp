@@ -13,7 +13,7 @@ TimingSource GpuTimer::source_for_renderer(const std::string& gl_renderer) {
 }
 
 void GpuTimer::mark() {
-  glFinish();
+  if (source_ == TimingSource::FinishWallClock) glFinish();
   wall_.push_back(std::chrono::steady_clock::now());
   queries_.push_back(make_query(GL_TIMESTAMP));
   glQueryCounter(queries_.back().get(), GL_TIMESTAMP);
@@ -41,6 +41,7 @@ std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
                                       : 0.0;
   };
   auto wall_ms = [&](std::size_t from, std::size_t to) {
+    if (source_ != TimingSource::FinishWallClock) return 0.0;  // unsynchronised: meaningless
     return std::chrono::duration<double, std::milli>(wall_[to] - wall_[from]).count();
   };
   std::vector<PassTime> passes;

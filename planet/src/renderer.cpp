@@ -71,14 +71,13 @@ struct Renderer::Impl {
   gl::FrameInputs inputs;
   gl::ShaderLibrary shaders;
   gl::HdrTarget target;
-  gl::GpuTimer timer;
   gl::SceneGraph graph;
   GlInfo info;
   std::vector<double> frame_ms;
   std::map<std::string, std::vector<double>> pass_ms;
   std::vector<std::string> pass_order;
   gl::VertexArray present_vao;
-  gl::TimingSource timing;
+  gl::GpuTimer timer;
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
@@ -91,7 +90,7 @@ struct Renderer::Impl {
         }()),
         target(scene_.image.width, scene_.image.height),
         info(query_gl_info()),
-        timing(gl::GpuTimer::source_for_renderer(info.renderer)) {
+        timer(gl::GpuTimer::source_for_renderer(info.renderer)) {
     // A user's sky photograph must not be silently replaced by the model sky.
     if (!scene.sky.exr.empty())
       throw SceneError("sky.exr: expected an empty value (skies from HDR images come with the "
@@ -138,7 +137,7 @@ void Renderer::render() {
     m.graph.render(m.inputs, m.target, m.shaders, m.timer);
   }
   const auto passes = m.timer.resolve(frame);
-  const bool wall = m.timing == gl::TimingSource::FinishWallClock;
+  const bool wall = m.timer.source() == gl::TimingSource::FinishWallClock;
   m.frame_ms.push_back(wall ? frame.wall_ms : frame.query_ms);
   m.pass_order.clear();
   for (const auto& pass : passes) {
@@ -189,7 +188,7 @@ RenderStats Renderer::stats() const {
   stats.mode = m.scene.camera.height >= kSpaceModeHeight ? "space" : "surface";
   stats.frames = static_cast<int>(m.frame_ms.size());
   stats.frame_ms = median(m.frame_ms);
-  stats.timing = m.timing == gl::TimingSource::FinishWallClock ? "finish_wall_clock"
+  stats.timing = m.timer.source() == gl::TimingSource::FinishWallClock ? "finish_wall_clock"
                                                                : "gl_timestamp_query";
   for (const auto& name : m.pass_order) {
     auto it = m.pass_ms.find(name);

@@ -1,11 +1,11 @@
 // thalassa — time of each pass of a frame on the GPU.
 //
-// Two clocks are read at every mark: a GL timestamp query (ARB_timer_query) and the CPU's
-// steady clock after glFinish() (which returns only when every command so far has completed).
-// The queries are the GPU's own clock and the figure to trust on a hardware driver; Mesa's
-// llvmpipe stamps a query when the command is queued, before its rasterisation threads run, so
-// its query times miss most of the work. There the finish-to-finish wall time is the true cost.
-// The glFinish at each mark serialises passes, which a timed run accepts.
+// Every mark takes a GL timestamp query (ARB_timer_query): the GPU's own clock, the figure to
+// trust on a hardware driver, read back at the end of the frame. Mesa's llvmpipe stamps a query
+// when the command is queued, before its rasterisation threads run, so its query times miss most
+// of the work; for it (TimingSource::FinishWallClock) each mark first waits with glFinish() and
+// reads the CPU's steady clock, and the finish-to-finish wall time is the true cost. Only that
+// mode serialises the passes.
 #pragma once
 
 #include "thalassa/engine/gl/objects.hpp"
@@ -33,15 +33,20 @@ class GpuTimer {
   // for Mesa's software rasterisers (llvmpipe, softpipe), the queries otherwise.
   static TimingSource source_for_renderer(const std::string& gl_renderer);
 
-  // Starts a frame: the queue is finished and both clocks are read.
+  explicit GpuTimer(TimingSource source = TimingSource::TimestampQuery) : source_(source) {}
+  TimingSource source() const { return source_; }
+
+  // Starts a frame.
   void begin_frame();
   // Marks the end of the pass called `name` (the pass ran since the previous mark).
   void end_pass(const std::string& name);
-  // Waits for the queries; the passes in order. `frame` gets the whole frame's times.
+  // Waits for the queries; the passes in order. `frame` gets the whole frame's times. wall_ms
+  // is 0 in TimestampQuery mode.
   std::vector<PassTime> resolve(PassTime& frame);
 
  private:
   void mark();
+  TimingSource source_;
   std::vector<Query> queries_;  // one per mark: frame start, then one per pass
   std::vector<std::chrono::steady_clock::time_point> wall_;
   std::vector<std::string> names_;
