@@ -57,7 +57,7 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
       sea_visible = sea_visible || z < 0.0;
     }
   // Below the surface the placeholder sea fills the whole image with deep-water light.
-  if (inputs.camera_height <= 0.0) {
+  if (inputs.camera_height < 0.0) {
     sea_visible = true;
     sky_visible = false;
   }

@@ -14,7 +14,7 @@ uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface, W m^
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
-  if (FrameCameraHeight() <= 0.0) {
+  if (FrameCameraHeight() < 0.0) {
     radiance = vec4(FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
     return;
   }

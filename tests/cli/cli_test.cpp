@@ -114,6 +114,12 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
     EXPECT_EQ(item.find("sun_glint"), std::string::npos) << item;
     EXPECT_EQ(item.find("sun_disc"), std::string::npos) << item;
   }
+  // A camera exactly at the surface is above it: it sees the sky and the sea.
+  ASSERT_EQ(run("render " + kSmall + " --set camera.height=0 --no-png --stats z.json").status, 0);
+  std::ifstream in_z(dir_ / "z.json");
+  const auto built_z = nlohmann::json::parse(in_z)["built"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "atmosphere.analytic_sky"), built_z.end());
+  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "ocean.flat_sea"), built_z.end());
   EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status, 0);
   std::ifstream in3(dir_ / "u.json");
   EXPECT_EQ(nlohmann::json::parse(in3)["mode"], "space");
