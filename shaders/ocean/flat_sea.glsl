@@ -53,7 +53,9 @@
 //   integral max(0, w.n) / n.z p(zeta) dzeta = integral (cos theta - sin theta q)_+ P(q) dq
 //                                            = cos theta (1 + Lambda(theta)),
 // the area of the facets facing w, projected onto the plane normal to w, per unit horizontal
-// area (FlatSeaSmithFacingArea).
+// area (FlatSeaSmithFacingArea). The erfc, Lambda and the facing area are implemented once, in
+// ocean/smith.glsl (shared with the Ross BRDF, ocean/ross_brdf.glsl, whose eq. 11 test checks
+// them for anisotropic slopes); this file only supplies a = cot theta / sigma.
 //
 // Form of G: 1 / (1 + Lambda_v + Lambda_s) is the paper's (eq. 5, from Ross et al.), the
 // "height-correlated" Smith masking-shadowing function (Heitz 2014, "Understanding the
@@ -92,6 +94,7 @@
 
 #include "common/definitions.glsl"
 #include "atmosphere/analytic_sky.glsl"
+#include "ocean/smith.glsl"
 
 // Refractive index of sea water relative to air, dimensionless (visible, wavelength-independent
 // placeholder).
@@ -104,45 +107,6 @@ const Number COX_MUNK_SLOPE_VARIANCE_PER_WIND_SPEED = 5.12e-3;  // s/m
 // Smallest slope variance the glint accepts, dimensionless: keeps p finite if a caller passes 0
 // (Cox & Munk's never goes below 0.003).
 const Number FLAT_SEA_MIN_SLOPE_VARIANCE = 1.0e-6;
-
-// Abramowitz & Stegun (1964), Handbook of Mathematical Functions, 7.1.26 (from Hastings 1955):
-//   erfc(x) = t (a1 + t (a2 + t (a3 + t (a4 + t a5)))) exp(-x^2) + eps(x),  t = 1 / (1 + p x),
-// |eps(x)| <= 1.5e-7 for x >= 0. Dimensionless.
-const Number ERFC_AS_7_1_26_P = 0.3275911;
-const Number ERFC_AS_7_1_26_A1 = 0.254829592;
-const Number ERFC_AS_7_1_26_A2 = -0.284496736;
-const Number ERFC_AS_7_1_26_A3 = 1.421413741;
-const Number ERFC_AS_7_1_26_A4 = -1.453152027;
-const Number ERFC_AS_7_1_26_A5 = 1.061405429;
-
-// Smith's Lambda(a), a = cot theta / sigma (see the top of the file), is evaluated in three
-// ranges. Writing Lambda = exp(-a^2) g(a) / 2 with g(a) = 1 / (a sqrt(pi)) - erfcx(a) and
-// erfcx(a) = exp(a^2) erfc(a) (the exp(-a^2) of both terms factored out, so nothing underflows
-// before the product):
-// - a < FLAT_SEA_SMITH_SPLIT_A: erfcx from A&S 7.1.26's polynomial. Its absolute error on erfc,
-//   1.5e-7, is 7.5e-8 on Lambda, and Lambda >= Lambda(1.2) = 0.0109 here: relative error
-//   <= 7e-6 (measured against mpmath on a 0.02 grid: 2.6e-6). Above the split the polynomial is useless for
-//   Lambda: the cancellation in g grows as 2 a^2 and the polynomial's relative error on erfcx
-//   grows to 38 % as a -> inf (t P(t) -> a1 / (p a) = 0.778 / a instead of 0.564 / a).
-// - FLAT_SEA_SMITH_SPLIT_A <= a < FLAT_SEA_SMITH_MAX_A: Laplace's continued fraction
-//   erfcx(a) = (1 / sqrt(pi)) / (a + (1/2) / (a + (2/2) / (a + (3/2) / (a + ...)))) (A&S 7.1.14).
-//   With r = (1/2) / (a + (2/2) / (a + ...)) (its tail, all terms positive),
-//   g = (1 / a - 1 / (a + r)) / sqrt(pi) = r / (sqrt(pi) a (a + r)): no cancellation at all.
-//   Truncated after FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS terms (the last denominator's tail
-//   set to 0), its relative error is 3.1e-6 at a = 1.2, 1.4e-7 at 2, 4e-13 at 4 (mpmath). The
-//   worst over both ranges, measured by the test against long double: 3.0e-6.
-// - a >= FLAT_SEA_SMITH_MAX_A: Lambda = 0. The asymptotic series,
-//   Lambda ~ exp(-a^2) / (2 sqrt(pi) a^3) (1 - 3 / (2 a^2) + ...), gives Lambda(6) = 3e-19,
-//   below double precision's epsilon relative to the 1 it is added to; it also covers the zenith
-//   (sin theta = 0, a = inf) without a division by 0.
-// - a < FLAT_SEA_SMITH_MIN_A (grazing, cot theta < 1e-9 sigma): a is raised to it, so that
-//   Lambda <= 1 / (2 sqrt(pi) 1e-9) = 2.8e8 stays finite (also in single precision); the
-//   glint's denominator does not use Lambda_v (see FlatSeaSmithFacingArea), and a Lambda_s this
-//   large already makes the glint negligible.
-const Number FLAT_SEA_SMITH_SPLIT_A = 1.2;
-const int FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS = 24;
-const Number FLAT_SEA_SMITH_MAX_A = 6.0;
-const Number FLAT_SEA_SMITH_MIN_A = 1.0e-9;
 
 // Facets steeper than acos(0.01) = 89.4 deg are ignored; this only avoids dividing by h.z ~ 0
 // (for v = -s, or v and s both near the horizon), since p(zeta) underflows to 0 long before.
@@ -182,33 +146,6 @@ Number FlatSeaSlopePdf(IN(Number) zeta_x, IN(Number) zeta_y, IN(Number) slope_va
   return exp(-(zeta_x * zeta_x + zeta_y * zeta_y) / sigma2) / (PI * sigma2);
 }
 
-// exp(x^2) erfc(x) (dimensionless) for x >= 0, from A&S 7.1.26's polynomial: accurate only in
-// the sense that its product with exp(-x^2) is erfc(x) within 1.5e-7 (see ERFC_AS_7_1_26_P).
-Number FlatSeaScaledErfcPolynomial(IN(Number) x) {
-  Number t = 1.0 / (1.0 + ERFC_AS_7_1_26_P * x);
-  return t * (ERFC_AS_7_1_26_A1 + t * (ERFC_AS_7_1_26_A2 + t * (ERFC_AS_7_1_26_A3 +
-         t * (ERFC_AS_7_1_26_A4 + t * ERFC_AS_7_1_26_A5))));
-}
-
-// Complementary error function (GLSL has none), dimensionless, absolute error <= 1.5e-7:
-// A&S 7.1.26 for x >= 0 and erfc(x) = 2 - erfc(-x) below.
-Number FlatSeaErfc(IN(Number) x) {
-  Number abs_x = abs(x);
-  Number value = exp(-abs_x * abs_x) * FlatSeaScaledErfcPolynomial(abs_x);
-  return x < 0.0 ? 2.0 - value : value;
-}
-
-// g(a) = 1 / (a sqrt(pi)) - exp(a^2) erfc(a) = 2 exp(a^2) Lambda(a), for
-// FLAT_SEA_SMITH_SPLIT_A <= a < FLAT_SEA_SMITH_MAX_A, from the continued fraction's tail r
-// (see FLAT_SEA_SMITH_SPLIT_A), evaluated from its last term up.
-Number FlatSeaSmithScaledLambdaTail(IN(Number) a) {
-  Number tail = 0.0;
-  for (int k = FLAT_SEA_SMITH_CONTINUED_FRACTION_TERMS; k >= 1; --k) {
-    tail = 0.5 * Number(k) / (a + tail);
-  }
-  return tail / (sqrt(PI) * a * (a + tail));
-}
-
 // sigma sin theta (dimensionless): the denominator of a = cot theta / sigma, for a direction of
 // cos theta = cos_theta (clamped to [0, 1]) and the total mean square slope slope_variance.
 Number FlatSeaSmithSigmaSin(IN(Number) cos_theta, IN(Number) slope_variance) {
@@ -218,37 +155,19 @@ Number FlatSeaSmithSigmaSin(IN(Number) cos_theta, IN(Number) slope_variance) {
 
 // Smith's Lambda (dimensionless, paper eq. 8) for a direction of cos theta = cos_theta from the
 // mean normal (+z; clamped to [0, 1]) over the isotropic Gaussian slopes of total mean square
-// slope slope_variance: 0 at the zenith, 2.8e8 at most at the horizon (FLAT_SEA_SMITH_MIN_A).
+// slope slope_variance: 0 at the zenith, 2.8e8 at most at the horizon (OCEAN_SMITH_MIN_A).
+// a = cot theta / sigma is the anisotropic a of ocean/smith.glsl with sigma_w^2 = sigma^2 / 2.
 Number FlatSeaSmithLambda(IN(Number) cos_theta, IN(Number) slope_variance) {
-  Number cos_t = clamp(cos_theta, 0.0, 1.0);
-  Number sigma_sin = FlatSeaSmithSigmaSin(cos_t, slope_variance);
-  if (cos_t >= FLAT_SEA_SMITH_MAX_A * sigma_sin) {
-    return 0.0;
-  }
-  Number a = max(cos_t / sigma_sin, FLAT_SEA_SMITH_MIN_A);
-  Number scaled = a < FLAT_SEA_SMITH_SPLIT_A ?
-      1.0 / (a * sqrt(PI)) - FlatSeaScaledErfcPolynomial(a) : FlatSeaSmithScaledLambdaTail(a);
-  return 0.5 * exp(-a * a) * scaled;
+  return OceanSmithLambda(OceanSmithA(cos_theta, FlatSeaSmithSigmaSin(cos_theta, slope_variance)));
 }
 
 // cos theta (1 + Lambda(theta)), dimensionless: the area of the facets facing a direction of
 // cos theta = cos_theta (clamped to [0, 1]), projected onto the plane normal to it, per unit
 // horizontal area (see the top of the file). Finite and exact at the horizon, where it is
-// sigma / (2 sqrt(pi)): below FLAT_SEA_SMITH_SPLIT_A, cos theta Lambda is written
-// exp(-a^2) (sigma sin theta / sqrt(pi) - cos theta erfcx(a)) / 2, using cos theta / a =
-// sigma sin theta, so no 0 * inf appears. Positive: at least max(cos theta, sigma sin theta /
-// (2 sqrt(pi))) (for the minimum slope variance, 2.8e-4 at the horizon).
+// sigma / (2 sqrt(pi)) (OceanSmithFacingArea). Positive: at least max(cos theta, sigma sin theta
+// / (2 sqrt(pi))) (for the minimum slope variance, 2.8e-4 at the horizon).
 Number FlatSeaSmithFacingArea(IN(Number) cos_theta, IN(Number) slope_variance) {
-  Number cos_t = clamp(cos_theta, 0.0, 1.0);
-  Number sigma_sin = FlatSeaSmithSigmaSin(cos_t, slope_variance);
-  if (cos_t >= FLAT_SEA_SMITH_MAX_A * sigma_sin) {
-    return cos_t;
-  }
-  Number a = cos_t / sigma_sin;  // sigma_sin > 0 here.
-  Number cos_lambda_scaled = a < FLAT_SEA_SMITH_SPLIT_A ?
-      sigma_sin / sqrt(PI) - cos_t * FlatSeaScaledErfcPolynomial(a) :
-      cos_t * FlatSeaSmithScaledLambdaTail(a);
-  return cos_t + 0.5 * exp(-a * a) * cos_lambda_scaled;
+  return OceanSmithFacingArea(cos_theta, FlatSeaSmithSigmaSin(cos_theta, slope_variance));
 }
 
 // Sun glint per unit solar irradiance, sr^-1:

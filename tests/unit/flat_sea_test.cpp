@@ -139,18 +139,9 @@ TEST(FlatSea, SlopePdfIntegratesToOneWithTotalVarianceSigmaSquared) {
   }
 }
 
-TEST(FlatSea, ErfcMatchesStdErfc) {
-  // Abramowitz & Stegun 7.1.26 promises an absolute error of at most 1.5e-7 for x >= 0; allow
-  // 2e-7. Negative arguments go through erfc(x) = 2 - erfc(-x), with the same absolute error.
-  double worst = 0.0;
-  for (double x = -6.0; x <= 6.0 + 1e-9; x += 1e-3) {
-    const double error = std::abs(FlatSeaErfc(x) - std::erfc(x));
-    worst = std::max(worst, error);
-    EXPECT_LE(error, 2e-7) << "x " << x;
-  }
-  std::printf("erfc: worst absolute error on [-6, 6]: %.3g\n", worst);
-  EXPECT_NEAR(FlatSeaErfc(0.0), 1.0, 2e-7);
-}
+// The erfc and Smith's Lambda are shared with the Ross BRDF (shaders/ocean/smith.glsl); the erfc
+// is tested against std::erfc, and Lambda(a) over its whole range, in ross_brdf_test.cpp. The
+// tests below check the flat sea's mapping a = cot theta / sigma (total variance sigma^2).
 
 // Smith's Lambda for the isotropic Gaussian slopes of total mean square slope sigma^2, at zenith
 // angle theta (radians), in long double from the closed form (Bruneton et al. 2010, eq. 8-9 with

@@ -1,0 +1,397 @@
+// The Ross et al. ocean BRDF and the lighting terms built on it, as used by Bruneton, Neyret &
+// Holzschuch 2010, "Real-time realistic ocean lighting using seamless transitions from geometry
+// to BRDF", Computer Graphics Forum 29(2) (../shared/papers/000_911981a54ad14c3e.txt), sections
+// 4 and 5, eq. 5-27 and Algorithm 5.1; after Ross, Dion & Potvin 2005, "Detailed analytical
+// approach to the Gaussian surface bidirectional reflectance distribution function
+// specular component applied to the sea surface", JOSA A 22(11), 2442-2453 ([RDP05]).
+// CPU reference: ocean/src/ross_brdf_reference.hpp; identity tests: tests/unit/ross_brdf_test.cpp;
+// the error of the effective Fresnel fit: docs/ocean_fresnel.md.
+//
+// FRAME. Unless a function says otherwise, vectors are in the TANGENT FRAME of the mean surface
+// (Algorithm 5.1's t_x, t_y, n): x along the wind (the axis of slope variance sigma_x^2), y
+// across it (sigma_y^2), z the mean normal n. Directions are unit vectors pointing away from the
+// surface: v toward the eye, l toward the light, so cos theta_v = v.z. OceanToTangentFrame takes
+// a world (or camera-relative) vector into this frame. Slopes zeta = (zeta_x, zeta_y) =
+// (dz/dx, dz/dy) of a facet are dimensionless; a facet of slopes zeta has the unit normal
+//   f(zeta) = (-zeta_x, -zeta_y, 1) / sqrt(1 + |zeta|^2)                            (eq. 6)
+// (OceanFacetNormal). Slope variances sigma_x^2, sigma_y^2 are dimensionless PER-AXIS variances
+// (eq. 4, 7), passed as a vec2 slope_variance = (sigma_x^2, sigma_y^2); Cox & Munk's total mean
+// square slope is their sum. BRDFs are in sr^-1, everything else here is dimensionless.
+//
+// THE MODEL (sec. 4). Slopes are Gaussian (eq. 7, OceanSlopePdf). The probability density, per
+// unit slope area, of seeing from v a facet of slopes zeta that is also lit from l is (eq. 5,
+// OceanVisibleSlopePdf)
+//   q_vn(zeta, v, l) = p(zeta) max(v.f, 0) H(l.f) / ((1 + Lambda(a_v) + Lambda(a_l)) f_z cos theta_v)
+// with Smith's Lambda (eq. 8, ocean/smith.glsl). Without a light (eq. 10, OceanVisibleSlopePdfE)
+//   q_vn^e(zeta, v) = p(zeta) max(v.f, 0) / ((1 + Lambda(a_v)) f_z cos theta_v),
+// which integrates to 1 over the slope plane (eq. 11): that is the identity the tests check,
+// because max(v.f, 0) / f_z = (cos theta_v - v_x zeta_x - v_y zeta_y)_+ and its Gaussian average
+// is cos theta_v (1 + Lambda(a_v)) exactly when a_v is right (ocean/smith.glsl, top). Note
+// max(v.f, 0) / f_z: the division by f_z cancels the normalisation of f, so q_vn is evaluated
+// without any square root.
+//
+// TYPO 1, eq. 9. The paper (and the slides) print
+//   a_i = (2 (sigma_x^2 cos^2 phi_i + sigma_y^2 sin^2 phi_i) tan theta_i)^(-1/2),
+// which is dimensionally inconsistent with Smith's definition: a = mu / sqrt(2 sigma_w^2) with
+// mu = cot theta, the slope of the ray, so tan^2 theta belongs where tan theta stands:
+//   a_i = 1 / (sqrt(2 sigma_w^2) tan theta_i),  sigma_w^2 = sigma_x^2 cos^2 phi_i + sigma_y^2 sin^2 phi_i.
+// The identity eq. 11 decides: with the corrected a the integral of q_vn^e is 1 to the accuracy
+// of Lambda (measured: 7e-8, see the test), with the printed a it is not (both forms
+// agree only at theta = 45 deg, where tan = tan^2 = 1; the test measures the integral with the
+// printed form at 1.048, 1.282 and 5.03 for theta_v = 70, 80 and 89 deg, sigma_x^2 = sigma_y^2 =
+// 0.1, and asserts that it fails).
+// Bruneton's published code uses the corrected form. In the tangent frame, with w a unit vector
+// and sin theta cos phi = w_x, sin theta sin phi = w_y, it needs no angle at all:
+//   a = w_z / sqrt(2 (sigma_x^2 w_x^2 + sigma_y^2 w_y^2))                       (OceanSmithAToward)
+// which for sigma_x^2 = sigma_y^2 = sigma^2 / 2 is the flat sea's isotropic cot theta / sigma.
+//
+// TYPO 2, eq. 12. The paper prints the change of variables d^2 zeta = d^2 omega_l / (4 h_z^2
+// v.h); the slides print h_z^3, which is right: a slope zeta = tan theta_h (cos phi, sin phi)
+// has d^2 zeta = tan theta_h d(tan theta_h) dphi = d^2 omega_h / cos^3 theta_h, and the mirror
+// reflection gives d^2 omega_l = 4 (v.h) d^2 omega_h. Eq. 13 (h_z^3) and eq. 15 (h_z^4) are
+// consistent with h_z^3. The test "the BRDF's albedo equals the same reflection counted on the
+// facets" integrates the BRDF over light directions and q_vn F over slopes: they agree with h_z^3
+// and differ by a factor h_z inside the integral (1 % at sigma^2 = 0.01 per axis, 6-8 % at
+// 0.09) with h_z^2.
+//
+// THE BRDF (eq. 13, OceanRossBrdf). With f = h at zeta = zeta_h (the slopes of the half vector,
+// OceanHalfVectorSlopes), v.f = v.h = l.h > 0 and f_z = h_z, eq. 13 simplifies to
+//   brdf(v, l) = p(zeta_h) F(v.h) / (4 h_z^4 cos theta_v cos theta_l (1 + Lambda_v + Lambda_l)),
+// symmetric in v and l (reciprocal). The reflected sun (eq. 15, OceanReflectedSun) is
+// brdf cos theta_l per unit L_sun Omega_sun. Both denominators are evaluated through
+// cos theta (1 + Lambda) and cos theta Lambda (ocean/smith.glsl), which are finite at the horizon:
+//   cos_v cos_l (1 + L_v + L_l) = cos_v cos_l + cos_l (cos_v L_v) + cos_v (cos_l L_l),
+//   cos_v (1 + L_v + L_l)       = cos_v (1 + L_v) + cos_v L_l,
+// so a horizontal view gives a finite BRDF and a finite sun glint, without any clamp of cos
+// theta_v (the paper's code clamps it to 0.01).
+//
+// Degenerate inputs: v below the mean surface (v.z < 0), a light at or below the horizon
+// (l.z <= 0, every facet is shadowed: Lambda_l -> inf) and pairs with no mirroring facet within
+// OCEAN_MIN_FACET_COS of the vertical (v = -l included) give 0; slope variances are raised to
+// OCEAN_MIN_SLOPE_VARIANCE. Every function returns finite values for all unit inputs and every
+// slope variance in [0, 1] (tested down to 1e-8 and, through the floor, 0).
+
+#ifndef THALASSA_OCEAN_ROSS_BRDF_GLSL
+#define THALASSA_OCEAN_ROSS_BRDF_GLSL
+
+#include "common/definitions.glsl"
+#include "ocean/smith.glsl"
+
+// Smallest slope variance (per axis, dimensionless) that any function here accepts: a floor
+// against 0 and negative inputs only (p(zeta) <= 1 / (2 pi 1e-10) = 1.6e9 stays finite in single
+// precision); the sun term raises its variances much further (OCEAN_SUN_MIN_SLOPE_VARIANCE).
+const Number OCEAN_MIN_SLOPE_VARIANCE = 1.0e-10;
+
+// The sun's mean angular radius, radians: 0.2666 deg (its apparent diameter, 31.99 arcmin, at
+// 1 AU; it varies by +-1.7 % over the year).
+const Number OCEAN_SUN_ANGULAR_RADIUS = 4.653e-3;
+
+// The "minimum variance for the sun's disc" of sec. 5.1, per axis, dimensionless: eq. 15 treats
+// the BRDF as constant over the sun's solid angle, which for a flat sea (a Dirac BRDF) would draw
+// a point instead of a disc, so the paper clamps sigma_x^2 and sigma_y^2 to a minimum in eq. 15.
+// The value makes the Gaussian glint of a flat sea have the second moments of the sun's disc:
+// the eye sees the sun reflected by the facets whose normal h bisects v and a point l of the
+// disc; near normal incidence, moving l by an angle e moves h, hence the slope, by e / 2, so the
+// disc (radius delta, uniform, per-axis variance delta^2 / 4) becomes a disc of radius delta / 2
+// in slope space, per-axis variance delta^2 / 16 = 1.35e-6 (sigma = 1.16e-3). It is exact in
+// the second moment at normal incidence only (the mapping is anisotropic at oblique incidence),
+// but conserves the reflected energy at every incidence (the test checks it). A renderer whose
+// pixels are wider than the sun's image may raise it (Bruneton's demo code uses 2e-5).
+const Number OCEAN_SUN_MIN_SLOPE_VARIANCE =
+    OCEAN_SUN_ANGULAR_RADIUS * OCEAN_SUN_ANGULAR_RADIUS / 16.0;
+
+// Facets steeper than acos(0.01) = 89.4 deg are ignored (no mirroring facet: 0): this only
+// avoids dividing by h_z ~ 0 (for v = -l, or v and l both near the horizon), since p(zeta_h)
+// with |zeta_h| >= 100 underflows to 0 long before for slope variances up to 1 per axis.
+const Number OCEAN_MIN_FACET_COS = 0.01;
+
+// The Fresnel reflectance of water at normal incidence, R of Schlick's eq. 14 (dimensionless):
+// the paper's and the issue's default (for n = 1.333, ((n - 1) / (n + 1))^2 = 0.0204).
+const Number OCEAN_DEFAULT_FRESNEL_R = 0.02;
+
+// The constants of the paper's effective Fresnel fit, eq. 26 (dimensionless, fitted by the
+// authors, see Fig. 7): the exponent 5 exp(-DECAY sigma_v) and the denominator
+// 1 + SCALE sigma_v^1.5, sigma_v the slope standard deviation toward the view (eq. 25).
+const Number OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY = 2.69;
+const Number OCEAN_EFFECTIVE_FRESNEL_SCALE = 22.7;
+
+// The largest radius (in units of the horizon circle's) that the stereographic sky-map mapping
+// returns, dimensionless. The mapping U(r) = (r_x, r_y) / (1 + r_z) sends the nadir r = (0, 0, -1)
+// to infinity; rays within 2 / OCEAN_SKY_MAP_MAX_RADIUS rad (0.11 deg) of the nadir are mapped to
+// this radius instead, along (r_x, r_y), and the nadir itself to (OCEAN_SKY_MAP_MAX_RADIUS, 0).
+// Any point this far outside the unit circle reads the same clamped edge texels of a sky map
+// that covers the upper hemisphere, so the choice does not show; it keeps U and its derivatives
+// finite (|dU/dzeta| <= ~4 (2 / MAX_RADIUS^2)^(-3/2) = 1.4e10) in single precision.
+const Number OCEAN_SKY_MAP_MAX_RADIUS = 1000.0;
+
+// ---------------------------------------------------------------------------------------------
+// Frames, slopes and the slope distribution.
+
+// The components of w (any frame) in the tangent frame (t_x, t_y, n) given in that same frame:
+// (w.t_x, w.t_y, w.n). t_x, t_y, n must be orthonormal (Algorithm 5.1's inputs).
+vec3 OceanToTangentFrame(IN(vec3) w, IN(vec3) t_x, IN(vec3) t_y, IN(vec3) n) {
+  return vec3(dot(w, t_x), dot(w, t_y), dot(w, n));
+}
+
+// slope_variance raised to OCEAN_MIN_SLOPE_VARIANCE, per axis.
+vec2 OceanClampedSlopeVariance(IN(vec2) slope_variance) {
+  return max(slope_variance, OCEAN_MIN_SLOPE_VARIANCE);
+}
+
+// The unit normal f(zeta) of a facet of slopes zeta, tangent frame (eq. 6).
+vec3 OceanFacetNormal(IN(vec2) zeta) {
+  return vec3(-zeta.x, -zeta.y, 1.0) / sqrt(1.0 + zeta.x * zeta.x + zeta.y * zeta.y);
+}
+
+// The anisotropic Gaussian slope pdf p(zeta), per unit slope area (dimensionless), eq. 7:
+//   p = exp(-(zeta_x^2 / sigma_x^2 + zeta_y^2 / sigma_y^2) / 2) / (2 pi sigma_x sigma_y).
+Number OceanSlopePdf(IN(vec2) zeta, IN(vec2) slope_variance) {
+  vec2 s2 = OceanClampedSlopeVariance(slope_variance);
+  Number q = zeta.x * zeta.x / s2.x + zeta.y * zeta.y / s2.y;
+  return exp(-0.5 * q) / (2.0 * PI * sqrt(s2.x * s2.y));
+}
+
+// The slope variance in the azimuth of w (tangent frame, any length), dimensionless, eq. 25:
+//   sigma_w^2 = sigma_x^2 cos^2 phi_w + sigma_y^2 sin^2 phi_w
+// = (sigma_x^2 w_x^2 + sigma_y^2 w_y^2) / (w_x^2 + w_y^2). For a vertical w (no azimuth) it is
+// the azimuthal mean (sigma_x^2 + sigma_y^2) / 2, the value that matters at the zenith, where
+// q_vn^e = p and eq. 24 depends on both variances alike.
+Number OceanSlopeVarianceToward(IN(vec3) w, IN(vec2) slope_variance) {
+  vec2 s2 = OceanClampedSlopeVariance(slope_variance);
+  Number sin2 = w.x * w.x + w.y * w.y;
+  if (sin2 > 0.0) {
+    return (s2.x * w.x * w.x + s2.y * w.y * w.y) / sin2;
+  }
+  return 0.5 * (s2.x + s2.y);
+}
+
+// sqrt(2 sigma_w^2) sin theta_w = sqrt(2 (sigma_x^2 w_x^2 + sigma_y^2 w_y^2)) (dimensionless),
+// for a unit w in the tangent frame: the denominator of a = cos theta / sigma_sin (eq. 9
+// corrected, see the top of the file). Positive unless w is vertical.
+Number OceanSmithSigmaSin(IN(vec3) w, IN(vec2) slope_variance) {
+  vec2 s2 = OceanClampedSlopeVariance(slope_variance);
+  return sqrt(2.0 * (s2.x * w.x * w.x + s2.y * w.y * w.y));
+}
+
+// Smith's a for the unit direction w (tangent frame), eq. 9 corrected:
+//   a = w_z / sqrt(2 (sigma_x^2 w_x^2 + sigma_y^2 w_y^2)) = 1 / (sqrt(2 sigma_w^2) tan theta_w),
+// held in [OCEAN_SMITH_MIN_A, OCEAN_SMITH_MAX_A] (w_z <= 0 gives OCEAN_SMITH_MIN_A).
+Number OceanSmithAToward(IN(vec3) w, IN(vec2) slope_variance) {
+  if (w.z <= 0.0) {
+    return OCEAN_SMITH_MIN_A;
+  }
+  return OceanSmithA(w.z, OceanSmithSigmaSin(w, slope_variance));
+}
+
+// Smith's Lambda(a_w) (dimensionless, eq. 8-9) for the unit direction w (tangent frame): 0 at
+// the zenith, 2.8e8 (OCEAN_SMITH_MIN_A) at and below the horizon.
+Number OceanSmithLambdaToward(IN(vec3) w, IN(vec2) slope_variance) {
+  return OceanSmithLambda(OceanSmithAToward(w, slope_variance));
+}
+
+// cos theta_w Lambda(a_w) (dimensionless) for the unit direction w (tangent frame), w_z clamped
+// to [0, 1]: finite at the horizon (sigma_sin / (2 sqrt(pi))).
+Number OceanSmithCosLambdaToward(IN(vec3) w, IN(vec2) slope_variance) {
+  return OceanSmithCosLambda(w.z, OceanSmithSigmaSin(w, slope_variance));
+}
+
+// cos theta_w (1 + Lambda(a_w)) (dimensionless), the facing area of ocean/smith.glsl, for the
+// unit direction w (tangent frame), w_z clamped to [0, 1]: positive for every w whose z is >= 0,
+// at least sqrt(2 OCEAN_MIN_SLOPE_VARIANCE) / (2 sqrt(pi)) = 4e-6.
+Number OceanSmithFacingAreaToward(IN(vec3) w, IN(vec2) slope_variance) {
+  return OceanSmithFacingArea(w.z, OceanSmithSigmaSin(w, slope_variance));
+}
+
+// The slopes zeta_h of the facet that mirrors l into v (tangent frame): h = normalize(v + l),
+// zeta_h = -(h_x, h_y) / h_z (Algorithm 5.1; the normalisation cancels). h_z is held at
+// OCEAN_MIN_FACET_COS |v + l| or above (and |v + l| at 1e-30 or above), so the result is finite
+// for every input; callers skip the facets steeper than that (OceanMirrorFacetTerm).
+vec2 OceanHalfVectorSlopes(IN(vec3) v, IN(vec3) l) {
+  vec3 sum = v + l;
+  Number h_z = max(sum.z, max(OCEAN_MIN_FACET_COS * length(sum), 1.0e-30));
+  return vec2(-sum.x, -sum.y) / h_z;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Visible-slope distributions (sec. 4).
+
+// q_vn(zeta, v, l) of eq. 5, per unit slope area (dimensionless): the density of the facets of
+// slopes zeta seen from v and lit from l (unit, tangent frame). max(v.f, 0) / f_z is
+// (v_z - v_x zeta_x - v_y zeta_y)_+ and H(l.f) is 1 where l_z - l_x zeta_x - l_y zeta_y > 0; the
+// denominator cos theta_v (1 + Lambda_v + Lambda_l) is the facing area of v plus cos theta_v
+// Lambda_l, positive down to cos theta_v = 0. 0 for v_z < 0 or l_z <= 0.
+Number OceanVisibleSlopePdf(IN(vec2) zeta, IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance) {
+  if (v.z < 0.0 || l.z <= 0.0) {
+    return 0.0;
+  }
+  Number lit = l.z - l.x * zeta.x - l.y * zeta.y;
+  if (lit <= 0.0) {
+    return 0.0;
+  }
+  Number facing = max(v.z - v.x * zeta.x - v.y * zeta.y, 0.0);
+  Number masked_cos_v = OceanSmithFacingAreaToward(v, slope_variance) +
+                        v.z * OceanSmithLambdaToward(l, slope_variance);
+  return OceanSlopePdf(zeta, slope_variance) * facing / masked_cos_v;
+}
+
+// q_vn^e(zeta, v) of eq. 10, per unit slope area (dimensionless): the density of the facets of
+// slopes zeta seen from v (unit, tangent frame), without a light; integrates to 1 (eq. 11).
+// 0 for v_z < 0.
+Number OceanVisibleSlopePdfE(IN(vec2) zeta, IN(vec3) v, IN(vec2) slope_variance) {
+  if (v.z < 0.0) {
+    return 0.0;
+  }
+  Number facing = max(v.z - v.x * zeta.x - v.y * zeta.y, 0.0);
+  return OceanSlopePdf(zeta, slope_variance) * facing /
+         OceanSmithFacingAreaToward(v, slope_variance);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Fresnel, the BRDF and the sun.
+
+// Schlick's approximation of the Fresnel reflectance (dimensionless), eq. 14:
+//   F = R + (1 - R) (1 - cos)^5, cos = cos_incidence clamped to [0, 1], R = fresnel_r.
+Number OceanSchlickFresnel(IN(Number) cos_incidence, IN(Number) fresnel_r) {
+  Number x = 1.0 - clamp(cos_incidence, 0.0, 1.0);
+  Number x2 = x * x;
+  return fresnel_r + (1.0 - fresnel_r) * x2 * x2 * x;
+}
+
+// p(zeta_h) F(v.h) / (4 h_z^4) (dimensionless), the numerator common to eq. 13 and 15, for unit
+// v and l in the tangent frame; 0 when no facet within OCEAN_MIN_FACET_COS of the vertical
+// mirrors l into v (v = -l included).
+Number OceanMirrorFacetTerm(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
+                            IN(Number) fresnel_r) {
+  vec3 sum = v + l;  // 2 (v.h) h: not normalised.
+  Number sum_length = length(sum);
+  if (sum.z <= OCEAN_MIN_FACET_COS * sum_length) {
+    return 0.0;
+  }
+  Number h_z = sum.z / sum_length;
+  vec2 zeta_h = vec2(-sum.x, -sum.y) / sum.z;
+  Number fresnel = OceanSchlickFresnel(dot(v, sum) / sum_length, fresnel_r);
+  Number h_z2 = h_z * h_z;
+  return OceanSlopePdf(zeta_h, slope_variance) * fresnel / (4.0 * h_z2 * h_z2);
+}
+
+// The Ross BRDF (sr^-1), eq. 13, for unit v and l in the tangent frame, slope variances
+// (sigma_x^2, sigma_y^2) and Schlick's R = fresnel_r:
+//   brdf = p(zeta_h) F(v.h) / (4 h_z^4 cos theta_v cos theta_l (1 + Lambda_v + Lambda_l))
+// (eq. 13 with eq. 5 at zeta = zeta_h, see the top of the file). Reciprocal. 0 for v_z < 0,
+// l_z < 0 or no mirroring facet; finite for a horizontal v or l (not both: then 0).
+Number OceanRossBrdf(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance, IN(Number) fresnel_r) {
+  if (v.z < 0.0 || l.z < 0.0) {
+    return 0.0;
+  }
+  Number masked_cos_vl = v.z * l.z + l.z * OceanSmithCosLambdaToward(v, slope_variance) +
+                         v.z * OceanSmithCosLambdaToward(l, slope_variance);
+  if (masked_cos_vl <= 0.0) {
+    return 0.0;  // v and l both horizontal: every facet is masked or shadowed.
+  }
+  return OceanMirrorFacetTerm(v, l, slope_variance, fresnel_r) / masked_cos_vl;
+}
+
+// The reflected sun radiance per unit sun radiance and solid angle, L_sun Omega_sun
+// (dimensionless, i.e. sr^-1 times sr), eq. 15: brdf(v, l) cos theta_l with the slope variances
+// raised to OCEAN_SUN_MIN_SLOPE_VARIANCE (sec. 5.1: the sun's disc; the only place the paper
+// clamps them), for unit v and l (toward the sun's centre) in the tangent frame:
+//   I_sun / (L_sun Omega_sun) = p(zeta_h) F(v.h) / (4 h_z^4 cos theta_v (1 + Lambda_v + Lambda_l)).
+// The denominator is the facing area of v plus cos theta_v Lambda_l: finite and positive down to
+// a horizontal view. 0 for v_z < 0, a sun at or below the horizon, or no mirroring facet.
+Number OceanReflectedSun(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
+                         IN(Number) fresnel_r) {
+  if (v.z < 0.0 || l.z <= 0.0) {
+    return 0.0;
+  }
+  vec2 s2 = max(slope_variance, OCEAN_SUN_MIN_SLOPE_VARIANCE);
+  Number masked_cos_v = OceanSmithFacingAreaToward(v, s2) + v.z * OceanSmithLambdaToward(l, s2);
+  return OceanMirrorFacetTerm(v, l, s2, fresnel_r) / masked_cos_v;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Sky and sea light (sec. 5.2, 5.3).
+
+// The effective Fresnel reflectance F-bar (dimensionless), the paper's fit eq. 26 of eq. 24
+// (the Schlick reflectance averaged over the visible facets, q_vn^e):
+//   F-bar = R + (1 - R) (1 - cos theta_v)^(5 exp(-2.69 sigma_v)) / (1 + 22.7 sigma_v^1.5),
+// for cos theta_v = cos_theta_v (clamped to [0, 1]) and sigma_v^2 = view_slope_variance (eq. 25,
+// OceanSlopeVarianceToward; negative counts as 0). Schlick's eq. 14 at sigma_v = 0. Its error
+// against eq. 24 is tabulated in docs/ocean_fresnel.md. The sea's refracted term (eq. 28) is
+// L_sea (1 - F-bar).
+Number OceanEffectiveFresnel(IN(Number) cos_theta_v, IN(Number) view_slope_variance,
+                             IN(Number) fresnel_r) {
+  Number sigma_v = sqrt(max(view_slope_variance, 0.0));
+  Number x = 1.0 - clamp(cos_theta_v, 0.0, 1.0);
+  Number exponent = 5.0 * exp(-OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY * sigma_v);
+  return fresnel_r + (1.0 - fresnel_r) * pow(x, exponent) /
+         (1.0 + OCEAN_EFFECTIVE_FRESNEL_SCALE * sigma_v * sqrt(sigma_v));
+}
+
+// The filter weight w(a, b, x) of sec. 3.2 (dimensionless, used for w_p, w_n and w_r = 1 - w_n):
+//   w = 3 x'^2 - 2 x'^3,  x' = clamp((x - a) / (b - a), 0, 1),
+// 0 for x <= a, 1 for x >= b (a = N_min, b = N_max, x = wavelength / cell or pixel size). For
+// b <= a it is the limit b -> a+, the step 0 below a, 1 from a on.
+Number OceanFilterWeight(IN(Number) a, IN(Number) b, IN(Number) x) {
+  if (b <= a) {
+    return x < a ? 0.0 : 1.0;
+  }
+  Number t = clamp((x - a) / (b - a), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
+// The stereographic sky-map coordinates U(r) = (r_x, r_y) / (1 + r_z) (dimensionless, sec. 5.2)
+// of the unit direction r in the sky map's frame (z up: the zenith maps to (0, 0), the horizon to
+// the unit circle, the lower hemisphere outside it). Near the nadir, where 1 + r_z <
+// 2 / OCEAN_SKY_MAP_MAX_RADIUS^2, the radius is held at OCEAN_SKY_MAP_MAX_RADIUS along
+// (r_x, r_y), and the nadir itself maps to (OCEAN_SKY_MAP_MAX_RADIUS, 0) (see that constant).
+vec2 OceanStereographic(IN(vec3) r) {
+  Number d = 1.0 + r.z;
+  if (d >= 2.0 / (OCEAN_SKY_MAP_MAX_RADIUS * OCEAN_SKY_MAP_MAX_RADIUS)) {
+    return vec2(r.x, r.y) / d;
+  }
+  Number r_xy = sqrt(r.x * r.x + r.y * r.y);
+  if (r_xy > 0.0) {
+    return vec2(r.x, r.y) * (OCEAN_SKY_MAP_MAX_RADIUS / r_xy);
+  }
+  return vec2(OCEAN_SKY_MAP_MAX_RADIUS, 0.0);
+}
+
+// The derivative of U (OceanStereographic) along dr = dr/ds at r, for any parameter s:
+//   dU = (dr_x, dr_y) / d - (r_x, r_y) dr_z / d^2,  d = 1 + r_z,
+// with d held at 2 / OCEAN_SKY_MAP_MAX_RADIUS^2 or above (near the nadir: large but finite).
+vec2 OceanStereographicDerivative(IN(vec3) r, IN(vec3) dr) {
+  Number d = max(1.0 + r.z, 2.0 / (OCEAN_SKY_MAP_MAX_RADIUS * OCEAN_SKY_MAP_MAX_RADIUS));
+  return vec2(dr.x, dr.y) / d - vec2(r.x, r.y) * (dr.z / (d * d));
+}
+
+// u(v, zeta) = U(r(v, zeta)) (Algorithm 5.1's procedure U): the sky-map coordinates of the view
+// vector v reflected by the facet of slopes zeta, r = 2 (v.f) f - v (eq. 18), with
+// f = f_x t_x + f_y t_y + f_z n from eq. 6. v, t_x, t_y, n are unit vectors in the SKY MAP'S
+// frame (world or east-north-up, z up), (t_x, t_y, n) the orthonormal tangent frame of the
+// surface (wind, cross-wind, mean normal). For the 9-sample elliptical average and tests.
+vec2 OceanSkyMapCoordinates(IN(vec3) v, IN(vec3) t_x, IN(vec3) t_y, IN(vec3) n,
+                            IN(vec2) zeta) {
+  vec3 f_tangent = OceanFacetNormal(zeta);
+  vec3 f = f_tangent.x * t_x + f_tangent.y * t_y + f_tangent.z * n;
+  vec3 r = 2.0 * dot(f, v) * f - v;
+  return OceanStereographic(r);
+}
+
+// u0 = u(v, 0) and the analytic derivatives du/dzeta_x, du/dzeta_y at zeta = 0 (dimensionless;
+// arguments as for OceanSkyMapCoordinates). Eq. 27's texture gradients are
+// 2 sigma_x du_dzeta_x and 2 sigma_y du_dzeta_y (Algorithm 5.1 takes them by finite differences
+// with epsilon = 1e-3; these are exact). At zeta = 0, f = n and, since |-zeta_x t_x - zeta_y t_y
+// + n| = 1 + O(zeta^2), df/dzeta_x = -t_x, df/dzeta_y = -t_y; then r = 2 (v.n) n - v and
+//   dr/dzeta_x = 2 (df.v) f + 2 (f.v) df = -2 ((v.t_x) n + (v.n) t_x)   (likewise for y).
+void OceanSkyMapGradients(IN(vec3) v, IN(vec3) t_x, IN(vec3) t_y, IN(vec3) n, OUT(vec2) u0,
+                          OUT(vec2) du_dzeta_x, OUT(vec2) du_dzeta_y) {
+  Number v_n = dot(v, n);
+  vec3 r = 2.0 * v_n * n - v;
+  vec3 dr_x = -2.0 * (dot(v, t_x) * n + v_n * t_x);
+  vec3 dr_y = -2.0 * (dot(v, t_y) * n + v_n * t_y);
+  u0 = OceanStereographic(r);
+  du_dzeta_x = OceanStereographicDerivative(r, dr_x);
+  du_dzeta_y = OceanStereographicDerivative(r, dr_y);
+}
+
+#endif  // THALASSA_OCEAN_ROSS_BRDF_GLSL
