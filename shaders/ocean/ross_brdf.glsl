@@ -327,18 +327,6 @@ Number OceanEffectiveFresnel(IN(Number) cos_theta_v, IN(Number) view_slope_varia
          (1.0 + OCEAN_EFFECTIVE_FRESNEL_SCALE * sigma_v * sqrt(sigma_v));
 }
 
-// The filter weight w(a, b, x) of sec. 3.2 (dimensionless, used for w_p, w_n and w_r = 1 - w_n):
-//   w = 3 x'^2 - 2 x'^3,  x' = clamp((x - a) / (b - a), 0, 1),
-// 0 for x <= a, 1 for x >= b (a = N_min, b = N_max, x = wavelength / cell or pixel size). For
-// b <= a it is the limit b -> a+, the step 0 below a, 1 from a on.
-Number OceanFilterWeight(IN(Number) a, IN(Number) b, IN(Number) x) {
-  if (b <= a) {
-    return x < a ? 0.0 : 1.0;
-  }
-  Number t = clamp((x - a) / (b - a), 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
-
 // The stereographic sky-map coordinates U(r) = (r_x, r_y) / (1 + r_z) (dimensionless, sec. 5.2)
 // of the unit direction r in the sky map's frame (z up: the zenith maps to (0, 0), the horizon to
 // the unit circle, the lower hemisphere outside it). Near the nadir, where 1 + r_z <

@@ -17,6 +17,7 @@
 #include "flat_sea_reference.hpp"
 #include "reference_test_support.hpp"
 #include "ross_brdf_reference.hpp"
+#include "trochoids_reference.hpp"
 
 namespace thalassa::glsl {
 namespace {
@@ -831,14 +832,14 @@ TEST(RossBrdf, SlopeVarianceTowardAndWeights) {
   }
   EXPECT_DOUBLE_EQ(OceanSlopeVarianceToward(vec3(0.0, 0.0, 1.0), slope_variance), 0.025);
   // The weights of sec. 3.2: 0 below a, 1 above b, 3 x^2 - 2 x^3 between, 1/2 at the middle.
-  EXPECT_EQ(OceanFilterWeight(1.0, 2.5, 0.5), 0.0);
-  EXPECT_EQ(OceanFilterWeight(1.0, 2.5, 1.0), 0.0);
-  EXPECT_EQ(OceanFilterWeight(1.0, 2.5, 2.5), 1.0);
-  EXPECT_EQ(OceanFilterWeight(1.0, 2.5, 40.0), 1.0);
-  EXPECT_DOUBLE_EQ(OceanFilterWeight(1.0, 2.5, 1.75), 0.5);
-  EXPECT_DOUBLE_EQ(OceanFilterWeight(1.0, 2.5, 1.3), 3.0 * 0.04 - 2.0 * 0.008);
-  EXPECT_EQ(OceanFilterWeight(2.0, 2.0, 1.9), 0.0);
-  EXPECT_EQ(OceanFilterWeight(2.0, 2.0, 2.0), 1.0);
+  EXPECT_EQ(WaveFilterWeight(1.0, 2.5, 0.5), 0.0);
+  EXPECT_EQ(WaveFilterWeight(1.0, 2.5, 1.0), 0.0);
+  EXPECT_EQ(WaveFilterWeight(1.0, 2.5, 2.5), 1.0);
+  EXPECT_EQ(WaveFilterWeight(1.0, 2.5, 40.0), 1.0);
+  EXPECT_DOUBLE_EQ(WaveFilterWeight(1.0, 2.5, 1.75), 0.5);
+  EXPECT_DOUBLE_EQ(WaveFilterWeight(1.0, 2.5, 1.3), 3.0 * 0.04 - 2.0 * 0.008);
+  EXPECT_EQ(WaveFilterWeight(2.0, 2.0, 1.9), 0.0);
+  EXPECT_EQ(WaveFilterWeight(2.0, 2.0, 2.0), 1.0);
   // Eq. 7 is normalised with per-axis variances: its peak is 1 / (2 pi sigma_x sigma_y).
   EXPECT_DOUBLE_EQ(OceanSlopePdf(vec2(0.0), slope_variance), 1.0 / (2.0 * PI * 0.2 * 0.1));
   EXPECT_DOUBLE_EQ(OceanSlopePdf(vec2(0.2, 0.0), slope_variance),
