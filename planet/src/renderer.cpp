@@ -11,7 +11,7 @@
 #include "thalassa/engine/gl/shader_library.hpp"
 #include "thalassa/engine/gl/state_guard.hpp"
 #include "thalassa/engine/gl_info.hpp"
-#include "thalassa/ocean/gl/sea_node.hpp"
+#include "thalassa/ocean/gl/ocean_node.hpp"
 #include "thalassa/planet/camera_frame.hpp"
 
 namespace thalassa {
@@ -106,7 +106,7 @@ struct Renderer::Impl {
     const bool sun_up = inputs.sun_direction.z > 0.0;
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}));
     if (sea_visible)
-      graph.add(ocean::make_sea_node({.wind_speed = scene.ocean.wind_speed, .sun_glint = sun_up}));
+      graph.add(ocean::make_ocean_node({.settings = scene.ocean, .sun_glint = sun_up}));
   }
 };
 
@@ -194,7 +194,8 @@ RenderStats Renderer::stats() const {
     auto it = m.pass_ms.find(name);
     if (it != m.pass_ms.end()) stats.passes.emplace_back(name, median(it->second));
   }
-  stats.resolved_waves = 0;  // the placeholder flat sea resolves no wave as geometry or normals
+  for (const auto& node : m.graph.nodes())
+    stats.resolved_waves = std::max(stats.resolved_waves, node->resolved_waves());
   stats.built.push_back("engine.hdr_target.rgba32f+depth32f." + std::to_string(stats.width) +
                         "x" + std::to_string(stats.height));
   for (const auto& node : m.graph.nodes())

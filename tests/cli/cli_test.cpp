@@ -97,8 +97,12 @@ TEST_F(Cli, StatsJsonHasTheContractKeys) {
     return std::find(built.begin(), built.end(), item) != built.end();
   };
   EXPECT_TRUE(has("atmosphere.analytic_sky"));
-  EXPECT_TRUE(has("ocean.flat_sea"));
+  EXPECT_TRUE(has("ocean.ross_brdf"));
   EXPECT_TRUE(has("ocean.sun_glint"));
+  EXPECT_TRUE(has("ocean.waves.60"));
+  // The paper's default: 60 waves from 2 cm to 30 m; a 32x24 image resolves some of them.
+  EXPECT_GT(stats["resolved_waves"].get<int>(), 0);
+  EXPECT_LE(stats["resolved_waves"].get<int>(), 60);
 }
 
 TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
@@ -119,7 +123,7 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
   std::ifstream in_z(dir_ / "z.json");
   const auto built_z = nlohmann::json::parse(in_z)["built"].get<std::vector<std::string>>();
   EXPECT_NE(std::find(built_z.begin(), built_z.end(), "atmosphere.analytic_sky"), built_z.end());
-  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "ocean.flat_sea"), built_z.end());
+  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "ocean.ross_brdf"), built_z.end());
   EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status, 0);
   std::ifstream in3(dir_ / "u.json");
   EXPECT_EQ(nlohmann::json::parse(in3)["mode"], "space");

@@ -58,6 +58,9 @@ class Node {
   virtual std::vector<std::string> built() const = 0;
   // Draws into the bound HDR target; the frame uniform block is bound at kFrameBinding.
   virtual void draw(const FrameInputs& inputs, ShaderLibrary& shaders) = 0;
+  // For the statistics: the waves this node summed as geometry or normals in its last frame,
+  // at the pixel where it summed the most (0 for nodes without waves).
+  virtual int resolved_waves() const { return 0; }
 };
 
 class SceneGraph {

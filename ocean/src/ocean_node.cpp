@@ -1,0 +1,127 @@
+#include "thalassa/ocean/gl/ocean_node.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "flat_sea_reference.hpp"
+#include "thalassa/ocean/wave_set.hpp"
+
+namespace thalassa::ocean {
+namespace {
+
+class OceanNode final : public gl::Node {
+ public:
+  explicit OceanNode(const OceanNodeOptions& options)
+      : options_(options),
+        waves_(make_wave_set(options.settings)),
+        wave_buffer_(gl::make_buffer()),
+        tail_buffer_(gl::make_buffer()) {
+    // Wave parameters change only with the scene; phases change every frame (uploaded in draw).
+    const std::size_t n = waves_.waves.size();
+    glNamedBufferStorage(wave_buffer_.get(), static_cast<GLsizeiptr>(n * 8 * sizeof(float)),
+                         nullptr, GL_DYNAMIC_STORAGE_BIT);
+    std::vector<float> tails;
+    for (const SlopeVariance& variance : waves_.tail_variance) {
+      tails.push_back(static_cast<float>(variance.along));
+      tails.push_back(static_cast<float>(variance.across));
+    }
+    glNamedBufferStorage(tail_buffer_.get(), static_cast<GLsizeiptr>(tails.size() * sizeof(float)),
+                         tails.data(), 0);
+  }
+
+  std::string name() const override { return "ocean"; }
+  std::vector<std::string> built() const override {
+    std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
+                                     "ocean.ross_brdf"};
+    if (options_.sun_glint) list.push_back("ocean.sun_glint");
+    return list;
+  }
+
+  void draw(const gl::FrameInputs& inputs, gl::ShaderLibrary& shaders) override {
+    gl::Defines defines;
+    if (options_.sun_glint) defines["SUN_GLINT"] = "1";
+    const GLuint program = shaders.program(
+        {.vertex = "engine/fullscreen.vert", .fragment = "ocean/ocean.frag", .defines = defines});
+
+    // Phases wrapped in double on the CPU (issue 3, point 7): the shader sees only small
+    // arguments. The frame's origin is the camera's nadir.
+    const std::vector<double> phases = wrapped_phases(waves_, inputs.time, glm::dvec2(0.0));
+    std::vector<float> packed;
+    packed.reserve(waves_.waves.size() * 8);
+    for (std::size_t i = 0; i < waves_.waves.size(); ++i) {
+      const Wave& w = waves_.waves[i];
+      for (double value : {w.direction.x, w.direction.y, w.wavenumber, w.amplitude, phases[i],
+                           w.wavelength, 0.0, 0.0})
+        packed.push_back(static_cast<float>(value));
+    }
+    glNamedBufferSubData(wave_buffer_.get(), 0, static_cast<GLsizeiptr>(packed.size() * sizeof(float)),
+                         packed.data());
+
+    // The downwelling irradiance is the same for every pixel: once per frame, in double, by the
+    // reference of the very functions the shader uses.
+    const glm::dvec3 irradiance = glsl::AnalyticSunHorizontalIrradiance(inputs.sun_direction) +
+                                  glsl::AnalyticSkyIrradiance(inputs.sun_direction);
+    const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
+    glUseProgram(program);
+    auto location = [&](const char* uniform) { return glGetUniformLocation(program, uniform); };
+    glProgramUniform1i(program, location("wave_count"), static_cast<GLint>(waves_.waves.size()));
+    glProgramUniform2f(program, location("downwind"), float(waves_.downwind.x),
+                       float(waves_.downwind.y));
+    glProgramUniform1f(program, location("n_min"), float(options_.n_min));
+    glProgramUniform1f(program, location("n_max"), float(options_.n_max));
+    glProgramUniform1f(program, location("fresnel_r"), float(options_.fresnel_r));
+    glProgramUniform3f(program, location("deep_reflectance"), float(reflectance.x),
+                       float(reflectance.y), float(reflectance.z));
+    glProgramUniform3f(program, location("horizontal_irradiance"), float(irradiance.x),
+                       float(irradiance.y), float(irradiance.z));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
+    gl::draw_fullscreen_pass();
+    resolved_waves_ = count_resolved(inputs);
+  }
+
+  int resolved_waves() const override { return resolved_waves_; }
+
+ private:
+  // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
+  // corners and centre that see the sea, their footprint the distance between neighbouring
+  // pixels' points on the plane z = 0 (what dFdx gives the shader).
+  int count_resolved(const gl::FrameInputs& inputs) const {
+    if (inputs.camera_height < 0.0 || waves_.waves.empty()) return 0;
+    const double aspect = double(inputs.width) / double(inputs.height);
+    auto on_sea = [&](double px, double py, glm::dvec2& point) {
+      const double u = 2.0 * px / inputs.width - 1.0, v = 2.0 * py / inputs.height - 1.0;
+      const glm::dvec3 ray = inputs.camera_forward +
+                             (u * inputs.tan_half_fov_y * aspect) * inputs.camera_right +
+                             (v * inputs.tan_half_fov_y) * inputs.camera_up;
+      if (ray.z >= 0.0) return false;
+      point = glm::dvec2(ray.x, ray.y) * (inputs.camera_height / -ray.z);
+      return true;
+    };
+    double smallest = INFINITY;
+    for (double px : {0.5, 0.5 * inputs.width, inputs.width - 1.5})
+      for (double py : {0.5, 0.5 * inputs.height, inputs.height - 1.5}) {
+        glm::dvec2 p, px1, py1;
+        if (!on_sea(px, py, p) || !on_sea(px + 1.0, py, px1) || !on_sea(px, py + 1.0, py1)) continue;
+        smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
+      }
+    if (!std::isfinite(smallest)) return 0;
+    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.n_min, options_.n_max)
+        .positive;
+  }
+
+  OceanNodeOptions options_;
+  WaveSet waves_;
+  gl::Buffer wave_buffer_;
+  gl::Buffer tail_buffer_;
+  int resolved_waves_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options) {
+  return std::make_unique<OceanNode>(options);
+}
+
+}  // namespace thalassa::ocean
