@@ -5,10 +5,17 @@
 #include <vector>
 
 #include "flat_sea_reference.hpp"
+#include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
 namespace thalassa::ocean {
 namespace {
+
+// The paper's grid cell, pixels (sec. 7.3: 8 x 8), and the cells added beyond each image edge
+// so that waves displacing the edge vertices inward do not uncover the border (2 cells = 16
+// pixels, more than a wave can move an edge vertex on screen except within a few metres).
+constexpr double kGridCellPixels = 8.0;
+constexpr int kGridMarginCells = 2;
 
 class OceanNode final : public gl::Node {
  public:
@@ -16,7 +23,10 @@ class OceanNode final : public gl::Node {
       : options_(options),
         waves_(make_wave_set(options.settings)),
         wave_buffer_(gl::make_buffer()),
-        tail_buffer_(gl::make_buffer()) {
+        tail_buffer_(gl::make_buffer()),
+        vertex_buffer_(gl::make_buffer()),
+        index_buffer_(gl::make_buffer()),
+        vertex_array_(gl::make_vertex_array()) {
     // Wave parameters change only with the scene; phases change every frame (uploaded in draw).
     const std::size_t n = waves_.waves.size();
     glNamedBufferStorage(wave_buffer_.get(), static_cast<GLsizeiptr>(n * 8 * sizeof(float)),
@@ -33,16 +43,20 @@ class OceanNode final : public gl::Node {
   std::string name() const override { return "ocean"; }
   std::vector<std::string> built() const override {
     std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
-                                     "ocean.ross_brdf"};
+                                     "ocean.projected_grid", "ocean.ross_brdf"};
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     return list;
   }
 
   void draw(const gl::FrameInputs& inputs, gl::ShaderLibrary& shaders) override {
+    const bool underwater = inputs.camera_height < 0.0;
     gl::Defines defines;
     if (options_.sun_glint) defines["SUN_GLINT"] = "1";
+    if (underwater) defines["UNDERWATER"] = "1";
     const GLuint program = shaders.program(
-        {.vertex = "engine/fullscreen.vert", .fragment = "ocean/ocean.frag", .defines = defines});
+        {.vertex = underwater ? "engine/fullscreen.vert" : "ocean/ocean.vert",
+         .fragment = "ocean/ocean.frag",
+         .defines = defines});
 
     // Phases wrapped in double on the CPU (issue 3, point 7): the shader sees only small
     // arguments. The frame's origin is the camera's nadir.
@@ -55,8 +69,8 @@ class OceanNode final : public gl::Node {
                            w.wavelength, 0.0, 0.0})
         packed.push_back(static_cast<float>(value));
     }
-    glNamedBufferSubData(wave_buffer_.get(), 0, static_cast<GLsizeiptr>(packed.size() * sizeof(float)),
-                         packed.data());
+    glNamedBufferSubData(wave_buffer_.get(), 0,
+                         static_cast<GLsizeiptr>(packed.size() * sizeof(float)), packed.data());
 
     // The downwelling irradiance is the same for every pixel: once per frame, in double, by the
     // reference of the very functions the shader uses.
@@ -77,13 +91,62 @@ class OceanNode final : public gl::Node {
                        float(irradiance.y), float(irradiance.z));
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
-    gl::draw_fullscreen_pass();
+    if (underwater) {
+      gl::draw_fullscreen_pass();
+      resolved_waves_ = 0;
+      return;
+    }
+    draw_grid(inputs);
     resolved_waves_ = count_resolved(inputs);
   }
 
   int resolved_waves() const override { return resolved_waves_; }
 
  private:
+  // The projected grid (CPU, double), uploaded as float rest positions relative to the camera's
+  // nadir (small numbers near the camera, where precision matters) and drawn with depth.
+  void draw_grid(const gl::FrameInputs& inputs) {
+    GridCamera camera;
+    camera.right = inputs.camera_right;
+    camera.up = inputs.camera_up;
+    camera.forward = inputs.camera_forward;
+    camera.tan_half_fov_y = inputs.tan_half_fov_y;
+    camera.aspect = double(inputs.width) / double(inputs.height);
+    camera.height = inputs.camera_height;
+    camera.width = inputs.width;
+    camera.height_px = inputs.height;
+    const ProjectedGrid grid = make_projected_grid(camera, kGridCellPixels, kGridMarginCells);
+    if (grid.rows == 0) return;
+    std::vector<float> vertices;
+    vertices.reserve(grid.rest.size() * 3);
+    for (std::size_t k = 0; k < grid.rest.size(); ++k)
+      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.cell_size[k]})
+        vertices.push_back(static_cast<float>(value));
+    const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
+    const GLsizeiptr index_bytes = static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint32_t));
+    // Sizes follow the image, fixed for a renderer: allocate once, update each frame.
+    if (vertex_bytes != vertex_capacity_ || index_bytes != index_capacity_) {
+      vertex_buffer_ = gl::make_buffer();
+      index_buffer_ = gl::make_buffer();
+      glNamedBufferStorage(vertex_buffer_.get(), vertex_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glNamedBufferStorage(index_buffer_.get(), index_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glVertexArrayVertexBuffer(vertex_array_.get(), 0, vertex_buffer_.get(), 0, 3 * sizeof(float));
+      glVertexArrayElementBuffer(vertex_array_.get(), index_buffer_.get());
+      glEnableVertexArrayAttrib(vertex_array_.get(), 0);
+      glVertexArrayAttribFormat(vertex_array_.get(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(vertex_array_.get(), 0, 0);
+      vertex_capacity_ = vertex_bytes;
+      index_capacity_ = index_bytes;
+    }
+    glNamedBufferSubData(vertex_buffer_.get(), 0, vertex_bytes, vertices.data());
+    glNamedBufferSubData(index_buffer_.get(), 0, index_bytes, grid.indices.data());
+    GLint previous_vertex_array = 0;
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous_vertex_array);
+    glBindVertexArray(vertex_array_.get());
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(static_cast<GLuint>(previous_vertex_array));
+  }
+
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
   // corners and centre that see the sea, their footprint the distance between neighbouring
   // pixels' points on the plane z = 0 (what dFdx gives the shader).
@@ -115,6 +178,11 @@ class OceanNode final : public gl::Node {
   WaveSet waves_;
   gl::Buffer wave_buffer_;
   gl::Buffer tail_buffer_;
+  gl::Buffer vertex_buffer_;
+  gl::Buffer index_buffer_;
+  gl::VertexArray vertex_array_;
+  GLsizeiptr vertex_capacity_ = 0;
+  GLsizeiptr index_capacity_ = 0;
   int resolved_waves_ = 0;
 };
 

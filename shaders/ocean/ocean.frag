@@ -1,9 +1,11 @@
-// The paper's ocean seen per pixel (Bruneton, Neyret & Holzschuch 2010, sec. 3.2-5), on the
-// plane z = 0 of the local east-north-up frame at the camera's nadir, without the projected
-// grid's displacement yet (issue 3, point 2): each pixel's normal sums the waves longer than
-// the pixel (eq. 3 with w_n), the shorter ones widen the Ross BRDF (eq. 4, w_r = 1 - w_n), and
-// the sun (eq. 15), the sky (eq. 21 with the effective Fresnel of eq. 26) and the refracted
-// light (eq. 28) are added as in Algorithm 5.1.
+// The paper's ocean per pixel (Bruneton, Neyret & Holzschuch 2010, sec. 3.2-5), on the projected
+// grid of ocean.vert (the sea displaced by the waves longer than a grid cell) in the local
+// east-north-up frame at the camera's nadir: each pixel's normal sums the waves longer than the
+// pixel at the pixel's rest position (eq. 3 with w_n; not from the filtered positions), the
+// shorter ones widen the Ross BRDF (eq. 4, w_r = 1 - w_n), and the sun (eq. 15), the sky (eq. 21
+// with the effective Fresnel of eq. 26) and the refracted light (eq. 28) are added as in
+// Algorithm 5.1. With UNDERWATER (a camera below the surface, full-screen) the water body's light
+// fills the view.
 //
 // Until the sky-map provider exists (issue 4), the sky term reads the analytic sky in the mirror
 // direction of the mean normal, unfiltered (eq. 27's filtered fetch needs the map).
@@ -15,6 +17,9 @@
 #include "ocean/trochoids.glsl"
 
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
+#ifndef UNDERWATER
+in vec2 rest_position;  // m east and north of the camera's nadir (ocean.vert)
+#endif
 
 // Two vec4 per wave, longest first: (direction east, direction north, |k| rad/m, h m) and
 // (wrapped phase rad, wavelength m, unused, unused). See ocean/src/ocean_node.cpp.
@@ -32,19 +37,13 @@ uniform vec3 deep_reflectance;        // irradiance reflectance of the water bod
 uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface, W m^-2 nm^-1
 
 void main() {
+#ifdef UNDERWATER
+  radiance = vec4(FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
+#else
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
-  const float height = FrameCameraHeight();
-  if (height < 0.0) {
-    radiance = vec4(FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
-    return;
-  }
-  // Where the ray meets the sea at rest, metres east and north of the camera's nadir. Above the
-  // horizon the pixel belongs to the sky pass; its derivatives below still need a value.
-  const float t = ray.z < 0.0 ? height / -ray.z : 0.0;
-  const vec2 x = t * vec2(ray.x, ray.y);
+  const vec2 x = rest_position;
   // The pixel's footprint on the sea (m): its larger side, so that no resolved wave aliases.
   const float footprint = max(max(length(dFdx(x)), length(dFdy(x))), 1e-6);
-  if (ray.z >= 0.0) discard;
 
   // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
   // longest first, so w_n falls with the index and the loop ends at the first unresolved wave.
@@ -99,4 +98,5 @@ void main() {
          OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
 #endif
   radiance = vec4(sea, 1.0);
+#endif
 }
