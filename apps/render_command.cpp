@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <unistd.h>
 
 #include "commands.hpp"
@@ -73,6 +74,23 @@ std::string format_number(double value) {
   return text;
 }
 
+// "sun,sky,sea" (any non-empty subset, any order) -> the terms; an error message otherwise.
+std::string parse_terms(const std::string& text, LightTerms& terms) {
+  terms = {false, false, false};
+  std::stringstream list(text);
+  int count = 0;
+  for (std::string item; std::getline(list, item, ',');) {
+    if (item == "sun") terms.sun = true;
+    else if (item == "sky") terms.sky = true;
+    else if (item == "sea") terms.sea = true;
+    else return "--terms " + text + ": expected a comma-separated subset of sun, sky, sea, got \"" +
+                item + "\"";
+    ++count;
+  }
+  if (count == 0) return "--terms: expected at least one of sun, sky, sea";
+  return "";
+}
+
 std::string stats_json(const RenderStats& stats) {
   nlohmann::ordered_json json;
   json["backend"] = stats.backend;
@@ -112,6 +130,9 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   render->add_flag("--float", args.float_exr, "Write a 32-bit float EXR (default: half)");
+  render->add_option("--terms", args.terms,
+                     "The ocean's light terms drawn, any of sun,sky,sea (comma-separated)")
+      ->capture_default_str();
 }
 
 int run_render(const RenderArgs& args) {
@@ -138,7 +159,9 @@ int run_render(const RenderArgs& args) {
   const std::string png = args.no_png ? std::string()
                           : args.png  ? *args.png
                                       : fs::path(args.exr).replace_extension(".png").string();
+  RendererOptions renderer_options;
   std::vector<std::string> problems = {
+      parse_terms(args.terms, renderer_options.terms),
       check_output("-o", args.exr, ".exr"), png.empty() ? "" : check_output("--png", png, ".png"),
       args.stats.empty() ? "" : check_output("--stats", args.stats, "")};
   // The image outputs differ by extension; the statistics may name either of them.
@@ -165,7 +188,7 @@ int run_render(const RenderArgs& args) {
                                            : create_context(*parse_backend(args.backend), options);
   std::unique_ptr<Renderer> renderer_owner;
   try {
-    renderer_owner = std::make_unique<Renderer>(*context, scene);
+    renderer_owner = std::make_unique<Renderer>(*context, scene, renderer_options);
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -200,6 +223,7 @@ int run_render(const RenderArgs& args) {
       {"thalassa:backend", stats.backend},
       {"thalassa:renderer", stats.renderer},
       {"thalassa:mode", stats.mode},
+      {"thalassa:terms", args.terms},
       {"thalassa:frame_ms", format_number(stats.frame_ms)},
   };
   std::string passes;

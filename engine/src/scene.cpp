@@ -234,6 +234,20 @@ const std::vector<KeyDesc>& key_table() {
       integer<&S::ocean, &OceanSettings::seed>(
           "ocean.seed", {0, 4294967295.0}, "", "1",
           "Random seed of the wave directions and phases."),
+      number<&S::ocean, &OceanSettings::n_min>(
+          "ocean.n_min", {0, 100}, "", "1",
+          "N_min of the filter weights (paper sec. 3.2): waves shorter than n_min grid cells "
+          "(or pixels) are filtered out; must be below ocean.n_max."),
+      number<&S::ocean, &OceanSettings::n_max>(
+          "ocean.n_max", {0, 100}, "", "2.5",
+          "N_max of the filter weights: waves longer than n_max cells (or pixels) are kept "
+          "whole."),
+      number<&S::ocean, &OceanSettings::grid_cell>(
+          "ocean.grid_cell", {1, 64}, "pixels", "8",
+          "Size of a cell of the projected grid."),
+      number<&S::ocean, &OceanSettings::fresnel_r>(
+          "ocean.fresnel_r", {0, 1}, "", "0.02",
+          "Fresnel reflectance of the sea at normal incidence (R of the paper's eq. 14)."),
 
       choice<&S::sky, &SkySettings::model>(
           "sky.model", {"atmosphere"}, "\"atmosphere\"", "Sky model used when sky.exr is empty."),
@@ -768,6 +782,11 @@ Scene SceneBuilder::build() const {
     if (it != impl_->values.end()) k.store(s, it->second);
   }
 
+  if (!(s.ocean.n_min < s.ocean.n_max)) {
+    fail(impl_->latest_source("ocean.n_min", "ocean.n_max"), "ocean.n_min",
+         "a value < ocean.n_max (" + format_number(s.ocean.n_max) + ")",
+         format_number(s.ocean.n_min));
+  }
   if (s.ocean.lambda_min > s.ocean.lambda_max) {
     fail(impl_->latest_source("ocean.lambda_min", "ocean.lambda_max"), "ocean.lambda_min",
          "a value <= ocean.lambda_max (" + format_number(s.ocean.lambda_max) + " m)",

@@ -11,10 +11,9 @@
 namespace thalassa::ocean {
 namespace {
 
-// The paper's grid cell, pixels (sec. 7.3: 8 x 8), and the cells added beyond each image edge
-// so that waves displacing the edge vertices inward do not uncover the border (2 cells = 16
-// pixels, more than a wave can move an edge vertex on screen except within a few metres).
-constexpr double kGridCellPixels = 8.0;
+// Cells added beyond each image edge so that waves displacing the edge vertices inward do not
+// uncover the border (2 cells: 16 pixels at the paper's 8-pixel cells, more than a wave moves
+// an edge vertex on screen except within a few metres of the camera).
 constexpr int kGridMarginCells = 2;
 
 class OceanNode final : public gl::Node {
@@ -45,6 +44,8 @@ class OceanNode final : public gl::Node {
     std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
                                      "ocean.projected_grid", "ocean.ross_brdf"};
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
+    if (options_.sky) list.push_back("ocean.sky_reflection");
+    if (options_.sea) list.push_back("ocean.refracted_light");
     return list;
   }
 
@@ -52,6 +53,8 @@ class OceanNode final : public gl::Node {
     const bool underwater = inputs.camera_height < 0.0;
     gl::Defines defines;
     if (options_.sun_glint) defines["SUN_GLINT"] = "1";
+    if (options_.sky) defines["SKY_TERM"] = "1";
+    if (options_.sea) defines["SEA_TERM"] = "1";
     if (underwater) defines["UNDERWATER"] = "1";
     const GLuint program = shaders.program(
         {.vertex = underwater ? "engine/fullscreen.vert" : "ocean/ocean.vert",
@@ -82,9 +85,9 @@ class OceanNode final : public gl::Node {
     glProgramUniform1i(program, location("wave_count"), static_cast<GLint>(waves_.waves.size()));
     glProgramUniform2f(program, location("downwind"), float(waves_.downwind.x),
                        float(waves_.downwind.y));
-    glProgramUniform1f(program, location("n_min"), float(options_.n_min));
-    glProgramUniform1f(program, location("n_max"), float(options_.n_max));
-    glProgramUniform1f(program, location("fresnel_r"), float(options_.fresnel_r));
+    glProgramUniform1f(program, location("n_min"), float(options_.settings.n_min));
+    glProgramUniform1f(program, location("n_max"), float(options_.settings.n_max));
+    glProgramUniform1f(program, location("fresnel_r"), float(options_.settings.fresnel_r));
     glProgramUniform3f(program, location("deep_reflectance"), float(reflectance.x),
                        float(reflectance.y), float(reflectance.z));
     glProgramUniform3f(program, location("horizontal_irradiance"), float(irradiance.x),
@@ -115,7 +118,7 @@ class OceanNode final : public gl::Node {
     camera.height = inputs.camera_height;
     camera.width = inputs.width;
     camera.height_px = inputs.height;
-    const ProjectedGrid grid = make_projected_grid(camera, kGridCellPixels, kGridMarginCells);
+    const ProjectedGrid grid = make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
     if (grid.rows == 0) return;
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 3);
@@ -170,7 +173,7 @@ class OceanNode final : public gl::Node {
         smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
       }
     if (!std::isfinite(smallest)) return 0;
-    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.n_min, options_.n_max)
+    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.settings.n_min, options_.settings.n_max)
         .positive;
   }
 

@@ -106,7 +106,10 @@ struct Renderer::Impl {
     const bool sun_up = inputs.sun_direction.z > 0.0;
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}));
     if (sea_visible)
-      graph.add(ocean::make_ocean_node({.settings = scene.ocean, .sun_glint = sun_up}));
+      graph.add(ocean::make_ocean_node({.settings = scene.ocean,
+                                        .sun_glint = sun_up && options.terms.sun,
+                                        .sky = options.terms.sky,
+                                        .sea = options.terms.sea}));
   }
 };
 

@@ -4,7 +4,8 @@
 // pixel at the pixel's rest position (eq. 3 with w_n; not from the filtered positions), the
 // shorter ones widen the Ross BRDF (eq. 4, w_r = 1 - w_n), and the sun (eq. 15), the sky (eq. 21
 // with the effective Fresnel of eq. 26) and the refracted light (eq. 28) are added as in
-// Algorithm 5.1. With UNDERWATER (a camera below the surface, full-screen) the water body's light
+// Algorithm 5.1. SUN_GLINT, SKY_TERM and SEA_TERM select the light terms drawn (validation
+// renders them one by one). With UNDERWATER (a camera below the surface, full-screen) the water body's light
 // fills the view.
 //
 // Until the sky-map provider exists (issue 4), the sky term reads the analytic sky in the mirror
@@ -38,7 +39,11 @@ uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface, W m^
 
 void main() {
 #ifdef UNDERWATER
+#ifdef SEA_TERM
   radiance = vec4(FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
+#else
+  radiance = vec4(0.0, 0.0, 0.0, 1.0);
+#endif
 #else
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
   const vec2 x = rest_position;
@@ -90,8 +95,13 @@ void main() {
                                               fresnel_r);
   vec3 mirror = reflect(ray, n);
   if (mirror.z < 0.0) mirror = normalize(vec3(mirror.x, mirror.y, 1e-6));
-  vec3 sea = fresnel * AnalyticSkyRadiance(mirror, sun) +
-             (1.0 - fresnel) * FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance);
+  vec3 sea = vec3(0.0);
+#ifdef SKY_TERM
+  sea += fresnel * AnalyticSkyRadiance(mirror, sun);
+#endif
+#ifdef SEA_TERM
+  sea += (1.0 - fresnel) * FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance);
+#endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
   sea += AnalyticSunTransmittedIrradiance(sun) *

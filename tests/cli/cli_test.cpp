@@ -129,6 +129,29 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
   EXPECT_EQ(nlohmann::json::parse(in3)["mode"], "space");
 }
 
+// The light terms add up: sun + sky + sea rendered apart sum to the frame rendered with all
+// three (the sky behind the sea is the same in every render, so it is counted once).
+TEST_F(Cli, LightTermsAddUp) {
+  for (const char* terms : {"sun,sky,sea", "sun", "sky", "sea"})
+    ASSERT_EQ(run("render " + kSmall + " --float --no-png --terms " + std::string(terms) +
+                  " -o " + std::string(terms) + ".exr").status, 0) << terms;
+  const auto all = thalassa::read_image((dir_ / "sun,sky,sea.exr").string());
+  const auto sun = thalassa::read_image((dir_ / "sun.exr").string());
+  const auto sky = thalassa::read_image((dir_ / "sky.exr").string());
+  const auto sea = thalassa::read_image((dir_ / "sea.exr").string());
+  int sea_pixels = 0;
+  for (std::size_t i = 0; i < all.rgba.size(); i += 4) {
+    // Sky pixels are identical in all four renders; sea pixels hold the terms.
+    if (sun.rgba[i] == sky.rgba[i] && sky.rgba[i] == sea.rgba[i]) continue;
+    ++sea_pixels;
+    for (int c = 0; c < 3; ++c) {
+      const double sum = double(sun.rgba[i + c]) + sky.rgba[i + c] + sea.rgba[i + c];
+      EXPECT_NEAR(all.rgba[i + c], sum, 1e-5 * sum + 1e-7) << "pixel " << i / 4;
+    }
+  }
+  EXPECT_GT(sea_pixels, 100);
+}
+
 TEST_F(Cli, SceneFileAndSetOverride) {
   write("scene.json", R"({"image": {"width": 20, "height": 10}, "camera": {"pitch": 10}})");
   ASSERT_EQ(run("render scene.json --set image.height=12 -o a.exr --png b.png").status, 0);
@@ -174,6 +197,8 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   expect_invalid(run("render -o a.exr --png folder.png"), {"--png", "folder"});
   fs::remove(dir_ / "folder.png");
   expect_invalid(run("render --set sky.exr=noon.exr"), {"--set: sky.exr", "noon.exr"});
+  expect_invalid(run("render --terms sun,moon"), {"--terms", "moon"});
+  expect_invalid(run("render --terms ,"), {"--terms"});
   EXPECT_EQ(run("render --backend vulkan").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{});

@@ -48,6 +48,10 @@ void expect_same(const Scene& a, const Scene& b) {
   EXPECT_EQ(a.ocean.lambda_min, b.ocean.lambda_min);
   EXPECT_EQ(a.ocean.lambda_max, b.ocean.lambda_max);
   EXPECT_EQ(a.ocean.seed, b.ocean.seed);
+  EXPECT_EQ(a.ocean.n_min, b.ocean.n_min);
+  EXPECT_EQ(a.ocean.n_max, b.ocean.n_max);
+  EXPECT_EQ(a.ocean.grid_cell, b.ocean.grid_cell);
+  EXPECT_EQ(a.ocean.fresnel_r, b.ocean.fresnel_r);
   EXPECT_EQ(a.sky.model, b.sky.model);
   EXPECT_EQ(a.sky.exr, b.sky.exr);
 }
@@ -265,6 +269,22 @@ TEST(SceneSet, NumbersBareAndQuotedStrings) {
   // A quoted number is a string: the path "123" must be given as "\"123\"".
   EXPECT_EQ(with_sets({"sky.exr=\"123\""}).sky.exr, "123");
   EXPECT_EQ(with_sets({"sky.exr="}).sky.exr, "");
+}
+
+TEST(SceneErrors, FilterWeightsNeedNMinBelowNMax) {
+  SceneBuilder b;
+  b.set("ocean.n_min=3");
+  try {
+    b.build();
+    FAIL() << "n_min above n_max must be refused";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--set: ocean.n_min: expected a value < ocean.n_max (2.5), got 3");
+  }
+  SceneBuilder ok;
+  ok.set("ocean.n_min=2");
+  ok.set("ocean.n_max=4");
+  EXPECT_EQ(ok.build().ocean.n_max, 4.0);
 }
 
 TEST(SceneErrors, RepeatedKeysAreRefused) {
@@ -604,6 +624,7 @@ TEST(SceneKeys, ListsEveryKeyOnce) {
       "sun.azimuth",       "sun.utc",              "time",            "planet.shape",
       "planet.radius",     "ocean.wind_speed",     "ocean.wind_direction", "ocean.spectrum",
       "ocean.waves",       "ocean.lambda_min",     "ocean.lambda_max", "ocean.seed",
+      "ocean.n_min",       "ocean.n_max",          "ocean.grid_cell", "ocean.fresnel_r",
       "sky.model",         "sky.exr"};
   std::set<std::string> seen;
   for (const auto& k : scene_keys()) {

@@ -70,6 +70,10 @@ struct OceanSettings {
   double lambda_min = 0.02;      // shortest wavelength, m, [1e-3, 1e4], <= lambda_max
   double lambda_max = 30.0;      // longest wavelength, m, [1e-3, 1e4]
   std::uint32_t seed = 1;        // random seed for directions and phases, [0, 4294967295]
+  double n_min = 1.0;            // N_min of the filter weights w (paper sec. 3.2), [0, 100], < n_max
+  double n_max = 2.5;            // N_max, [0, 100]
+  double grid_cell = 8.0;        // projected grid cell, pixels, [1, 64]
+  double fresnel_r = 0.02;       // Fresnel reflectance at normal incidence (eq. 14), [0, 1]
 };
 
 struct SkySettings {

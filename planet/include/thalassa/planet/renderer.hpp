@@ -37,8 +37,17 @@ struct RenderStats {
   std::vector<std::string> built;  // modules and shader features this scene caused to exist
 };
 
+// The ocean's light terms (Bruneton et al. 2010 sec. 5): all by default; validation renders
+// them one by one.
+struct LightTerms {
+  bool sun = true;  // reflected sun (eq. 15)
+  bool sky = true;  // reflected sky (eq. 21)
+  bool sea = true;  // light refracted from the water (eq. 28)
+};
+
 struct RendererOptions {
   std::vector<std::string> shader_roots;  // searched before the default shader folders
+  LightTerms terms;
 };
 
 class Renderer {

@@ -13,11 +13,10 @@
 namespace thalassa::ocean {
 
 struct OceanNodeOptions {
-  OceanSettings settings;
-  bool sun_glint = true;  // left out when the sun is below the horizon
-  double n_min = 1.0;     // N_min of the filter weights (sec. 3.2 and 7.1)
-  double n_max = 2.5;     // N_max
-  double fresnel_r = 0.02;  // R, Fresnel reflectance at normal incidence (eq. 14)
+  OceanSettings settings;  // the wave set, filter weights, grid cell and Fresnel reflectance
+  bool sun_glint = true;   // the reflected sun (eq. 15); left out when the sun has set
+  bool sky = true;         // the reflected sky (eq. 21)
+  bool sea = true;         // the light refracted from the water (eq. 28)
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
