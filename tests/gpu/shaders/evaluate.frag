@@ -5,6 +5,7 @@
 #include "atmosphere/analytic_sky.glsl"
 #include "ocean/flat_sea.glsl"
 #include "ocean/ross_brdf.glsl"
+#include "ocean/trochoids.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
 uniform vec3 sun_dir;      // unit, east-north-up
@@ -12,6 +13,10 @@ uniform float wind_speed;  // m/s
 uniform vec3 deep_reflectance;
 uniform vec3 horizontal_irradiance;
 uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
+// FUNCTION 6 and 7: the wave set as the ocean node packs it (two vec4 per wave) and the local
+// position (m, relative to the frame's origin) in the input texel's xy.
+layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
+uniform int wave_count;
 layout(location = 0) out vec4 result;
 
 void main() {
@@ -28,6 +33,28 @@ void main() {
   result = vec4(OceanReflectedSun(v, sun_dir, slope_variance, 0.02),
                 OceanEffectiveFresnel(v.z, OceanSlopeVarianceToward(v, slope_variance), 0.02),
                 OceanSmithLambdaToward(v, slope_variance), 1.0);
+#elif FUNCTION == 6 || FUNCTION == 7
+  // Eq. 2's displacement (6) and eq. 3's normal (7) of all waves (w = 1) at local position x.
+  const vec2 x = vec2(v.x, v.y);
+  vec3 p = vec3(x, 0.0);
+  vec3 d_dx = vec3(1.0, 0.0, 0.0);
+  vec3 d_dy = vec3(0.0, 1.0, 0.0);
+  for (int i = 0; i < wave_count; ++i) {
+    const vec4 a = waves[2 * i];
+    const vec4 b = waves[2 * i + 1];
+    const vec2 direction = vec2(a.x, a.y);
+    const float argument = TrochoidArgument(a.z * direction, b.x, x);
+    p += TrochoidDisplacement(direction, a.w, argument);
+    vec3 wave_dx, wave_dy;
+    TrochoidDisplacementDerivatives(direction, a.z, a.w, argument, wave_dx, wave_dy);
+    d_dx += wave_dx;
+    d_dy += wave_dy;
+  }
+#if FUNCTION == 6
+  result = vec4(p - vec3(x, 0.0), 1.0);
+#else
+  result = vec4(normalize(cross(d_dx, d_dy)), 1.0);
+#endif
 #elif FUNCTION == 4
   result = vec4(FlatSeaRadianceWithIrradiance(v, sun_dir, wind_speed, deep_reflectance,
                                               horizontal_irradiance), 1.0);
