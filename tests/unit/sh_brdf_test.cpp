@@ -17,6 +17,8 @@
 // are the measured values with a margin, stated at each assertion.
 #include <gtest/gtest.h>
 
+#include "gauss_legendre.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,36 +43,8 @@ constexpr double kDegree = kPi / 180.0;
 
 // ---- Helpers ---------------------------------------------------------------------------------
 
-struct Quadrature1d {
-  std::vector<double> x, w;
-};
-
-// Gauss-Legendre on [-1, 1] (independent of the library's copy): Newton on P_n from the
-// three-term recurrence, weights 2 / ((1 - x^2) P_n'^2) (A&S 25.4.29).
-Quadrature1d gauss_legendre(int n) {
-  Quadrature1d q;
-  q.x.resize(n);
-  q.w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double derivative = 0.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p_prev = 1.0, p = x;
-      for (int k = 2; k <= n; ++k) {
-        const double next = ((2.0 * k - 1.0) * x * p - (k - 1.0) * p_prev) / k;
-        p_prev = p;
-        p = next;
-      }
-      derivative = n * (x * p - p_prev) / (x * x - 1.0);
-      const double dx = p / derivative;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    q.x[i] = x;
-    q.w[i] = 2.0 / ((1.0 - x * x) * derivative * derivative);
-  }
-  return q;
-}
+using test::gauss_legendre;
+using test::Quadrature1d;
 
 double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 Vec3 cross(const Vec3& a, const Vec3& b) {

@@ -8,6 +8,8 @@
 // beyond the tolerances); timings are printed, never asserted (DESIGN sec. 6).
 #include <gtest/gtest.h>
 
+#include "gauss_legendre.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -27,38 +29,8 @@ constexpr unsigned kSeed = 20020721;  // any fixed seed: the tests are determini
 
 // ---- Helpers ---------------------------------------------------------------------------------
 
-// Gauss-Legendre nodes and weights on [-1, 1] with n points (exact for polynomials of degree
-// <= 2n - 1): Newton's method on P_n from the three-term recurrence k P_k = (2k - 1) x P_(k-1) -
-// (k - 1) P_(k-2) (no factorials), started at Tricomi's estimate cos(pi (i + 3/4) / (n + 1/2)).
-// Weights 2 / ((1 - x^2) P_n'(x)^2) (Abramowitz & Stegun 25.4.29).
-struct Quadrature1d {
-  std::vector<double> x, w;
-};
-
-Quadrature1d gauss_legendre(int n) {
-  Quadrature1d q;
-  q.x.resize(n);
-  q.w.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double derivative = 0.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p_prev = 1.0, p = x;
-      for (int k = 2; k <= n; ++k) {
-        const double next = ((2.0 * k - 1.0) * x * p - (k - 1.0) * p_prev) / k;
-        p_prev = p;
-        p = next;
-      }
-      derivative = n * (x * p - p_prev) / (x * x - 1.0);
-      const double dx = p / derivative;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    q.x[i] = x;
-    q.w[i] = 2.0 / ((1.0 - x * x) * derivative * derivative);
-  }
-  return q;
-}
+using test::gauss_legendre;
+using test::Quadrature1d;
 
 // A product rule on the sphere: Gauss-Legendre in t = cos θ (n_theta points) times the uniform
 // rule at φ_k = 2 pi k / n_phi. For two harmonics of order <= L it is exact when n_theta >= L + 1
