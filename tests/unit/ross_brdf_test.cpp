@@ -350,6 +350,20 @@ double LobeScale(const vec2& slope_variance) {
   return 2.0 * std::sqrt(std::max(slope_variance.x, slope_variance.y));
 }
 
+// The directional albedo counted on the facets: integral of
+// q_vn(zeta, v, r) F(v.f) H(r_z) d^2 zeta, r = 2 (v.f) f - v.
+double FacetAlbedo(const vec3& v, const vec2& slope_variance, double r, const GaussLegendre& rule) {
+  return IntegrateOverVisibleSlopes(
+      v, slope_variance,
+      [&](const vec2& zeta) {
+        const vec3 f = OceanFacetNormal(zeta);
+        const vec3 reflected = 2.0 * dot(v, f) * f - v;
+        return OceanVisibleSlopePdf(zeta, v, reflected, slope_variance) *
+               OceanSchlickFresnel(dot(v, f), r);
+      },
+      rule);
+}
+
 TEST(RossBrdf, BrdfAlbedoIsTheReflectionCountedOnTheFacets) {
   // The light-space integral of the BRDF (its directional albedo) equals the same reflection
   // counted on the facets: each visible, lit facet of slopes zeta mirrors the light from
@@ -375,15 +389,7 @@ TEST(RossBrdf, BrdfAlbedoIsTheReflectionCountedOnTheFacets) {
           v, LobeScale(slope_variance), [&](const vec3& l) {
             return OceanRossBrdf(v, l, slope_variance, r) * normalize(v + l).z;
           });
-      const double facets = IntegrateOverVisibleSlopes(
-          v, slope_variance,
-          [&](const vec2& zeta) {
-            const vec3 f = OceanFacetNormal(zeta);
-            const vec3 reflected = 2.0 * dot(v, f) * f - v;
-            return OceanVisibleSlopePdf(zeta, v, reflected, slope_variance) *
-                   OceanSchlickFresnel(dot(v, f), r);
-          },
-          rule);
+      const double facets = FacetAlbedo(v, slope_variance, r, rule);
       const double error = RelativeDifference(albedo, facets);
       worst = std::max(worst, error);
       std::printf("albedo sigma (%.2f, %.2f) theta_v %2.0f: light space %.6f, facets %.6f, "
@@ -396,19 +402,6 @@ TEST(RossBrdf, BrdfAlbedoIsTheReflectionCountedOnTheFacets) {
   std::printf("BRDF albedo against the facet count: worst relative difference %.3g\n", worst);
 }
 
-// The directional albedo counted on the facets (as in the test above): integral of
-// q_vn(zeta, v, r) F(v.f) H(r_z) d^2 zeta, r = 2 (v.f) f - v.
-double FacetAlbedo(const vec3& v, const vec2& slope_variance, double r, const GaussLegendre& rule) {
-  return IntegrateOverVisibleSlopes(
-      v, slope_variance,
-      [&](const vec2& zeta) {
-        const vec3 f = OceanFacetNormal(zeta);
-        const vec3 reflected = 2.0 * dot(v, f) * f - v;
-        return OceanVisibleSlopePdf(zeta, v, reflected, slope_variance) *
-               OceanSchlickFresnel(dot(v, f), r);
-      },
-      rule);
-}
 
 TEST(RossBrdf, BrdfConservesEnergyAndTendsToFresnel) {
   // The directional albedo is at most 1 for every tested v and sigma, with R = 0.02 and with
