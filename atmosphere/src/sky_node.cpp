@@ -12,7 +12,8 @@ class SkyNode final : public gl::Node {
     if (options_.sun_disc) list.push_back("atmosphere.sun_disc");
     return list;
   }
-  void draw(const gl::FrameInputs& /*inputs*/, gl::ShaderLibrary& shaders) override {
+  void draw(const gl::FrameInputs& /*inputs*/, Context& context) override {
+    gl::ShaderLibrary& shaders = context.shaders;
     gl::Defines defines;
     if (options_.sun_disc) defines["SUN_DISC"] = "1";
     const GLuint program =
@@ -20,6 +21,7 @@ class SkyNode final : public gl::Node {
     glUseProgram(program);
     // The sky lies at infinity: nothing drawn later can be hidden by it.
     gl::draw_fullscreen_pass();
+    context.timer.end_pass("sky");
   }
 
  private:

@@ -50,10 +50,8 @@ void SceneGraph::render(const FrameInputs& inputs, HdrTarget& target, ShaderLibr
   glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, frame_uniforms_.get());
   glBindVertexArray(empty_vao_.get());
   timer.end_pass("clear");
-  for (const auto& node : nodes_) {
-    node->draw(inputs, shaders);
-    timer.end_pass(node->name());
-  }
+  Node::Context context{shaders, target, timer};
+  for (const auto& node : nodes_) node->draw(inputs, context);
   glBindVertexArray(0);
   check_error("scene graph render");
 }

@@ -22,6 +22,7 @@ void set_pass_state() {
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glBindSampler(0, 0);
+  glBindSampler(1, 0);
 }
 
 StateGuard::StateGuard() {
@@ -40,10 +41,14 @@ StateGuard::StateGuard() {
   glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
   glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, kFrameBinding, &uniform_buffer_);
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 1, &storage_buffers_[0]);
+  glGetIntegeri_v(GL_SHADER_STORAGE_BUFFER_BINDING, 2, &storage_buffers_[1]);
   glGetIntegerv(GL_ACTIVE_TEXTURE, &active_texture_);
-  glActiveTexture(GL_TEXTURE0);
-  glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture_unit0_);
-  glGetIntegerv(GL_SAMPLER_BINDING, &sampler_unit0_);
+  for (int unit = 0; unit < kTextureUnits; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &textures_[unit]);
+    glGetIntegerv(GL_SAMPLER_BINDING, &samplers_[unit]);
+  }
   glActiveTexture(static_cast<GLenum>(active_texture_));
   glGetIntegerv(GL_PACK_ALIGNMENT, &pack_alignment_);
   glGetIntegerv(GL_PACK_ROW_LENGTH, &pack_row_length_);
@@ -68,9 +73,13 @@ StateGuard::~StateGuard() {
   // Core profile: one mode for both faces, so the front face's value stands for both.
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
   glBindBufferBase(GL_UNIFORM_BUFFER, kFrameBinding, static_cast<GLuint>(uniform_buffer_));
-  glActiveTexture(GL_TEXTURE0);
-  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(texture_unit0_));
-  glBindSampler(0, static_cast<GLuint>(sampler_unit0_));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, static_cast<GLuint>(storage_buffers_[0]));
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, static_cast<GLuint>(storage_buffers_[1]));
+  for (int unit = 0; unit < kTextureUnits; ++unit) {
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(textures_[unit]));
+    glBindSampler(unit, static_cast<GLuint>(samplers_[unit]));
+  }
   glActiveTexture(static_cast<GLenum>(active_texture_));
   glPixelStorei(GL_PACK_ALIGNMENT, pack_alignment_);
   glPixelStorei(GL_PACK_ROW_LENGTH, pack_row_length_);

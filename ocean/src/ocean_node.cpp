@@ -49,21 +49,78 @@ class OceanNode final : public gl::Node {
     return list;
   }
 
-  void draw(const gl::FrameInputs& inputs, gl::ShaderLibrary& shaders) override {
+  void draw(const gl::FrameInputs& inputs, Context& context) override {
     const bool underwater = inputs.camera_height < 0.0;
-    gl::Defines defines;
-    if (options_.sun_glint) defines["SUN_GLINT"] = "1";
-    if (options_.sky) defines["SKY_TERM"] = "1";
-    if (options_.sea) defines["SEA_TERM"] = "1";
-    if (underwater) defines["UNDERWATER"] = "1";
-    const GLuint program = shaders.program(
-        {.vertex = underwater ? "engine/fullscreen.vert" : "ocean/ocean.vert",
-         .fragment = "ocean/ocean.frag",
-         .defines = defines});
+    gl::Defines lighting_defines;
+    if (options_.sun_glint) lighting_defines["SUN_GLINT"] = "1";
+    if (options_.sky) lighting_defines["SKY_TERM"] = "1";
+    if (options_.sea) lighting_defines["SEA_TERM"] = "1";
+    if (underwater) lighting_defines["UNDERWATER"] = "1";
+    const GLuint lighting = context.shaders.program({.vertex = "engine/fullscreen.vert",
+                                                     .fragment = "ocean/ocean_lighting.frag",
+                                                     .defines = lighting_defines});
+    // The downwelling irradiance is the same for every pixel: once per frame, in double, by the
+    // reference of the very functions the shader uses.
+    const glm::dvec3 irradiance = glsl::AnalyticSunHorizontalIrradiance(inputs.sun_direction) +
+                                  glsl::AnalyticSkyIrradiance(inputs.sun_direction);
+    const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
+    auto location = [](GLuint program, const char* name) {
+      return glGetUniformLocation(program, name);
+    };
+    glProgramUniform2f(lighting, location(lighting, "downwind"), float(waves_.downwind.x),
+                       float(waves_.downwind.y));
+    glProgramUniform1f(lighting, location(lighting, "fresnel_r"),
+                       float(options_.settings.fresnel_r));
+    glProgramUniform3f(lighting, location(lighting, "deep_reflectance"), float(reflectance.x),
+                       float(reflectance.y), float(reflectance.z));
+    glProgramUniform3f(lighting, location(lighting, "horizontal_irradiance"),
+                       float(irradiance.x), float(irradiance.y), float(irradiance.z));
+    if (underwater) {
+      glUseProgram(lighting);
+      gl::draw_fullscreen_pass();
+      context.timer.end_pass("ocean");
+      resolved_waves_ = 0;
+      return;
+    }
 
-    // Phases wrapped in double on the CPU (issue 3, point 7): the shader sees only small
-    // arguments. The frame's origin is the camera's nadir.
-    const std::vector<double> phases = wrapped_phases(waves_, inputs.time, glm::dvec2(0.0));
+    // Pass 1, positions + normals + variances (sec. 7.3's first part), into the G-buffer.
+    const GLuint geometry = context.shaders.program(
+        {.vertex = "ocean/ocean.vert", .fragment = "ocean/ocean_geometry.frag"});
+    upload_phases(inputs.time);
+    glProgramUniform1i(geometry, location(geometry, "wave_count"),
+                       static_cast<GLint>(waves_.waves.size()));
+    glProgramUniform2f(geometry, location(geometry, "downwind"), float(waves_.downwind.x),
+                       float(waves_.downwind.y));
+    glProgramUniform1f(geometry, location(geometry, "n_min"), float(options_.settings.n_min));
+    glProgramUniform1f(geometry, location(geometry, "n_max"), float(options_.settings.n_max));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
+    ensure_gbuffer(context.target);
+    glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.get());
+    const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 1, zero);
+    glUseProgram(geometry);
+    draw_grid(inputs);
+    context.timer.end_pass("ocean.geometry");
+
+    // Pass 2, lighting (sec. 7.3's second part), into the HDR target where the grid drew.
+    glBindFramebuffer(GL_FRAMEBUFFER, context.target.framebuffer());
+    glUseProgram(lighting);
+    glBindTextureUnit(0, normal_texture_.get());
+    glBindTextureUnit(1, variance_texture_.get());
+    gl::draw_fullscreen_pass();
+    context.timer.end_pass("ocean.lighting");
+    resolved_waves_ = count_resolved(inputs);
+  }
+
+  int resolved_waves() const override { return resolved_waves_; }
+
+ private:
+  // Phases wrapped in double on the CPU (issue 3, point 7): the shader sees only small
+  // arguments. The frame's origin is the camera's nadir.
+  void upload_phases(double time) {
+    const std::vector<double> phases = wrapped_phases(waves_, time, glm::dvec2(0.0));
     std::vector<float> packed;
     packed.reserve(waves_.waves.size() * 8);
     for (std::size_t i = 0; i < waves_.waves.size(); ++i) {
@@ -74,38 +131,29 @@ class OceanNode final : public gl::Node {
     }
     glNamedBufferSubData(wave_buffer_.get(), 0,
                          static_cast<GLsizeiptr>(packed.size() * sizeof(float)), packed.data());
-
-    // The downwelling irradiance is the same for every pixel: once per frame, in double, by the
-    // reference of the very functions the shader uses.
-    const glm::dvec3 irradiance = glsl::AnalyticSunHorizontalIrradiance(inputs.sun_direction) +
-                                  glsl::AnalyticSkyIrradiance(inputs.sun_direction);
-    const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
-    glUseProgram(program);
-    auto location = [&](const char* uniform) { return glGetUniformLocation(program, uniform); };
-    glProgramUniform1i(program, location("wave_count"), static_cast<GLint>(waves_.waves.size()));
-    glProgramUniform2f(program, location("downwind"), float(waves_.downwind.x),
-                       float(waves_.downwind.y));
-    glProgramUniform1f(program, location("n_min"), float(options_.settings.n_min));
-    glProgramUniform1f(program, location("n_max"), float(options_.settings.n_max));
-    glProgramUniform1f(program, location("fresnel_r"), float(options_.settings.fresnel_r));
-    glProgramUniform3f(program, location("deep_reflectance"), float(reflectance.x),
-                       float(reflectance.y), float(reflectance.z));
-    glProgramUniform3f(program, location("horizontal_irradiance"), float(irradiance.x),
-                       float(irradiance.y), float(irradiance.z));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
-    if (underwater) {
-      gl::draw_fullscreen_pass();
-      resolved_waves_ = 0;
-      return;
-    }
-    draw_grid(inputs);
-    resolved_waves_ = count_resolved(inputs);
   }
 
-  int resolved_waves() const override { return resolved_waves_; }
+  // The G-buffer between the two passes: the unit normal (+ coverage) and the unresolved slope
+  // variances, float, with the HDR target's own depth buffer so the grid's triangles occlude
+  // each other and later passes can test against the sea.
+  void ensure_gbuffer(const gl::HdrTarget& target) {
+    if (gbuffer_ && gbuffer_width_ == target.width() && gbuffer_height_ == target.height()) return;
+    normal_texture_ = gl::make_texture(GL_TEXTURE_2D);
+    variance_texture_ = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(normal_texture_.get(), 1, GL_RGBA32F, target.width(), target.height());
+    glTextureStorage2D(variance_texture_.get(), 1, GL_RG32F, target.width(), target.height());
+    gbuffer_ = gl::make_framebuffer();
+    glNamedFramebufferTexture(gbuffer_.get(), GL_COLOR_ATTACHMENT0, normal_texture_.get(), 0);
+    glNamedFramebufferTexture(gbuffer_.get(), GL_COLOR_ATTACHMENT1, variance_texture_.get(), 0);
+    glNamedFramebufferTexture(gbuffer_.get(), GL_DEPTH_ATTACHMENT, target.depth_texture(), 0);
+    const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(gbuffer_.get(), 2, buffers);
+    if (glCheckNamedFramebufferStatus(gbuffer_.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw gl::GlError("ocean G-buffer: framebuffer incomplete");
+    gbuffer_width_ = target.width();
+    gbuffer_height_ = target.height();
+  }
 
- private:
   // The projected grid (CPU, double), uploaded as float rest positions relative to the camera's
   // nadir (small numbers near the camera, where precision matters) and drawn with depth.
   void draw_grid(const gl::FrameInputs& inputs) {
@@ -184,6 +232,11 @@ class OceanNode final : public gl::Node {
   gl::Buffer vertex_buffer_;
   gl::Buffer index_buffer_;
   gl::VertexArray vertex_array_;
+  gl::Framebuffer gbuffer_;
+  gl::Texture normal_texture_;
+  gl::Texture variance_texture_;
+  int gbuffer_width_ = 0;
+  int gbuffer_height_ = 0;
   GLsizeiptr vertex_capacity_ = 0;
   GLsizeiptr index_capacity_ = 0;
   int resolved_waves_ = 0;

@@ -18,6 +18,7 @@ class HdrTarget {
   int height() const { return height_; }
   GLuint framebuffer() const { return framebuffer_.get(); }
   GLuint color_texture() const { return color_.get(); }
+  GLuint depth_texture() const { return depth_.get(); }
 
   // Binds the framebuffer, sets the viewport, reversed-Z state, and clears colour to 0 and
   // depth to 0 (the far plane under reversed-Z).

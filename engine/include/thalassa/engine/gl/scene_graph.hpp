@@ -52,12 +52,20 @@ void draw_fullscreen_pass();
 class Node {
  public:
   virtual ~Node() = default;
-  // The pass name in statistics ("sky", "ocean").
+  // The node's name ("sky", "ocean"); its passes are named in the statistics by end_pass.
   virtual std::string name() const = 0;
   // What this node caused to be created ("atmosphere.analytic_sky", ...), for `built`.
   virtual std::vector<std::string> built() const = 0;
-  // Draws into the bound HDR target; the frame uniform block is bound at kFrameBinding.
-  virtual void draw(const FrameInputs& inputs, ShaderLibrary& shaders) = 0;
+  // What a node draws with: the shader library, the HDR target (bound when draw() is called;
+  // a node that draws elsewhere first must bind it back) and the timer, on which the node
+  // marks the end of each of its passes (at least one) with end_pass("name").
+  struct Context {
+    ShaderLibrary& shaders;
+    HdrTarget& target;
+    GpuTimer& timer;
+  };
+  // Draws into the HDR target; the frame uniform block is bound at kFrameBinding.
+  virtual void draw(const FrameInputs& inputs, Context& context) = 0;
   // For the statistics: the waves this node summed as geometry or normals in its last frame,
   // at the pixel where it summed the most (0 for nodes without waves).
   virtual int resolved_waves() const { return 0; }

@@ -10,13 +10,14 @@ namespace thalassa::gl {
 
 // Puts the fixed-function state a full-screen HDR pass relies on into a known form: no blending,
 // scissor, stencil, culling, polygon offset, alpha-to-coverage, rasterizer discard or sRGB
-// conversion; colour writes on; filled polygons; no sampler object on texture unit 0.
+// conversion; colour writes on; filled polygons; no sampler object on texture units 0 and 1.
 void set_pass_state();
 
 // Saves, then restores on destruction: framebuffer bindings, viewport, program, vertex array,
 // depth test/function/mask, clip control (thalassa uses reversed-Z, zero-to-one), everything
-// set_pass_state() changes, the uniform buffer binding 0, texture unit 0 and the pixel-pack
-// state (alignment, row length, skips, pack buffer).
+// set_pass_state() changes, the uniform buffer binding 0, the shader storage buffer bindings 1
+// and 2, texture units 0 and 1 and the pixel-pack state (alignment, row length, skips, pack
+// buffer).
 class StateGuard {
  public:
   StateGuard();
@@ -36,7 +37,12 @@ class StateGuard {
   GLboolean color_mask_[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
   GLint polygon_mode_[2] = {GL_FILL, GL_FILL};
   GLint uniform_buffer_ = 0;
-  GLint active_texture_ = GL_TEXTURE0, texture_unit0_ = 0, sampler_unit0_ = 0;
+  GLint storage_buffers_[2] = {0, 0};  // bindings 1 and 2
+  // Texture units thalassa's passes bind (0 and 1): their 2D texture and sampler object.
+  static constexpr int kTextureUnits = 2;
+  GLint active_texture_ = GL_TEXTURE0;
+  GLint textures_[kTextureUnits] = {};
+  GLint samplers_[kTextureUnits] = {};
   GLint pack_alignment_ = 4, pack_row_length_ = 0, pack_skip_rows_ = 0, pack_skip_pixels_ = 0;
   GLint pack_buffer_ = 0;
 };

@@ -1,0 +1,66 @@
+// The ocean's first pass (Bruneton, Neyret & Holzschuch 2010, sec. 3.2; the paper's sec. 7.3
+// times it as "positions + normals + variances"): on the projected grid of ocean.vert, each
+// pixel's normal sums the waves longer than the pixel at the pixel's rest position (eq. 3 with
+// w_n; not from the filtered positions), and the shorter ones give the unresolved slope
+// variance (eq. 4, w_r = 1 - w_n). Both go to a G-buffer that ocean_lighting.frag shades.
+#include "common/definitions.glsl"
+#include "common/frame.glsl"
+#include "ocean/trochoids.glsl"
+
+in vec2 rest_position;  // m east and north of the camera's nadir (ocean.vert)
+layout(location = 0) out vec4 normal_out;    // xyz: unit normal, east-north-up; w: 1 (coverage)
+layout(location = 1) out vec4 variance_out;  // xy: slope variance along, across the wind
+
+// Two vec4 per wave, longest first: (direction east, direction north, |k| rad/m, h m) and
+// (wrapped phase rad, wavelength m, unused, unused). See ocean/src/ocean_node.cpp.
+layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
+// tails[i] = slope variance (along, across the wind) of the waves j >= i (Appendix A, eq. 4
+// with w_r = 1), wave_count + 1 entries, summed on the CPU in double.
+layout(std430, binding = 2) readonly buffer Tails { vec2 tails[]; };
+
+uniform int wave_count;
+uniform vec2 downwind;  // unit, east-north-up
+uniform float n_min;    // N_min, N_max of w_n (sec. 3.2)
+uniform float n_max;
+
+void main() {
+  const vec3 ray = FrameViewRay(gl_FragCoord.xy);
+  const vec2 x = rest_position;
+  // The pixel's footprint on the sea (m): its larger side, so that no resolved wave aliases.
+  const float footprint = max(max(length(dFdx(x)), length(dFdy(x))), 1e-6);
+
+  // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
+  // longest first, so w_n falls with the index and the loop ends at the first unresolved wave.
+  const vec2 crosswind = vec2(-downwind.y, downwind.x);
+  vec3 d_dx = vec3(1.0, 0.0, 0.0);
+  vec3 d_dy = vec3(0.0, 1.0, 0.0);
+  vec2 partial_variance = vec2(0.0);
+  int first_unresolved = wave_count;
+  for (int i = 0; i < wave_count; ++i) {
+    const vec4 a = waves[2 * i];
+    const vec4 b = waves[2 * i + 1];
+    const float w_n = WaveFilterWeight(n_min, n_max, b.y / footprint);
+    if (w_n <= 0.0) {
+      first_unresolved = i;
+      break;
+    }
+    const vec2 direction = vec2(a.x, a.y);
+    vec3 wave_dx, wave_dy;
+    TrochoidDisplacementDerivatives(direction, a.z, a.w,
+                                    TrochoidArgument(a.z * direction, b.x, x), wave_dx, wave_dy);
+    d_dx += w_n * wave_dx;
+    d_dy += w_n * wave_dy;
+    if (w_n < 1.0) {
+      const float variance = TrochoidSlopeVariance(a.z * (1.0 - w_n) * a.w);
+      const float along = dot(direction, downwind);
+      const float across = dot(direction, crosswind);
+      partial_variance += variance * vec2(along * along, across * across);
+    }
+  }
+  const vec3 v = -ray;  // toward the eye
+  vec3 n = normalize(cross(d_dx, d_dy));
+  // Sec. 3.2: a normal facing away from the viewer is reflected back toward it.
+  if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
+  normal_out = vec4(n, 1.0);
+  variance_out = vec4(tails[first_unresolved] + partial_variance, 0.0, 0.0);
+}
