@@ -1,10 +1,10 @@
+#include <unistd.h>
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
-#include <unistd.h>
 
 #include "commands.hpp"
 #include "thalassa/thalassa.hpp"
@@ -16,7 +16,8 @@ namespace fs = std::filesystem;
 
 bool has_extension(const std::string& path, const std::string& extension) {
   std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   return ext == extension;
 }
 
@@ -80,11 +81,15 @@ std::string parse_terms(const std::string& text, LightTerms& terms) {
   std::stringstream list(text);
   int count = 0;
   for (std::string item; std::getline(list, item, ',');) {
-    if (item == "sun") terms.sun = true;
-    else if (item == "sky") terms.sky = true;
-    else if (item == "sea") terms.sea = true;
-    else return "--terms " + text + ": expected a comma-separated subset of sun, sky, sea, got \"" +
-                item + "\"";
+    if (item == "sun")
+      terms.sun = true;
+    else if (item == "sky")
+      terms.sky = true;
+    else if (item == "sea")
+      terms.sea = true;
+    else
+      return "--terms " + text + ": expected a comma-separated subset of sun, sky, sea, got \"" +
+             item + "\"";
     ++count;
   }
   if (count == 0) return "--terms: expected at least one of sun, sky, sea";
@@ -130,8 +135,9 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   render->add_flag("--float", args.float_exr, "Write a 32-bit float EXR (default: half)");
-  render->add_option("--terms", args.terms,
-                     "The ocean's light terms drawn, any of sun,sky,sea (comma-separated)")
+  render
+      ->add_option("--terms", args.terms,
+                   "The ocean's light terms drawn, any of sun,sky,sea (comma-separated)")
       ->capture_default_str();
 }
 
@@ -151,7 +157,8 @@ int run_render(const RenderArgs& args) {
     if (!scene.sky.exr.empty())
       throw SceneError(builder.source_of("sky.exr") +
                        ": sky.exr: expected an empty value (skies from HDR images are not "
-                       "supported by this version yet), got \"" + scene.sky.exr + "\"");
+                       "supported by this version yet), got \"" +
+                       scene.sky.exr + "\"");
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -161,8 +168,8 @@ int run_render(const RenderArgs& args) {
                                       : fs::path(args.exr).replace_extension(".png").string();
   RendererOptions renderer_options;
   std::vector<std::string> problems = {
-      parse_terms(args.terms, renderer_options.terms),
-      check_output("-o", args.exr, ".exr"), png.empty() ? "" : check_output("--png", png, ".png"),
+      parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
+      png.empty() ? "" : check_output("--png", png, ".png"),
       args.stats.empty() ? "" : check_output("--stats", args.stats, "")};
   // The image outputs differ by extension; the statistics may name either of them.
   if (!args.stats.empty()) {
@@ -211,10 +218,11 @@ int run_render(const RenderArgs& args) {
   Metadata metadata = {
       {"thalassa:version", THALASSA_VERSION_STRING},
       {"thalassa:scene", merged},
-      {"thalassa:camera", "lat=" + format_number(c.lat) + " lon=" + format_number(c.lon) +
-                              " height=" + format_number(c.height) + " heading=" +
-                              format_number(c.heading) + " pitch=" + format_number(c.pitch) +
-                              " roll=" + format_number(c.roll) + " fov_y=" + format_number(c.fov_y)},
+      {"thalassa:camera",
+       "lat=" + format_number(c.lat) + " lon=" + format_number(c.lon) +
+           " height=" + format_number(c.height) + " heading=" + format_number(c.heading) +
+           " pitch=" + format_number(c.pitch) + " roll=" + format_number(c.roll) +
+           " fov_y=" + format_number(c.fov_y)},
       // The sun as drawn (computed from sun.utc when the scene gives a time).
       {"thalassa:sun", "zenith=" + format_number(scene.sun.zenith) +
                            " azimuth=" + format_number(scene.sun.azimuth) +

@@ -267,9 +267,8 @@ BrdfCoefficients project_brdf(const BrdfTable& table, int order_l, int order_p) 
   std::vector<double> phi_kernel(n_q * n_phi);
   for (std::size_t q = 0; q < n_q; ++q) {
     for (std::size_t k = 0; k < n_phi; ++k) {
-      phi_kernel[q * n_phi + k] =
-          (2.0 * kPi / static_cast<double>(n_phi)) *
-          std::cos(static_cast<double>(q) * table.phi(static_cast<int>(k)));
+      phi_kernel[q * n_phi + k] = (2.0 * kPi / static_cast<double>(n_phi)) *
+                                  std::cos(static_cast<double>(q) * table.phi(static_cast<int>(k)));
     }
   }
   const std::vector<double> legendre_o = legendre_table(table.cos_theta_o(), order_p);
@@ -424,9 +423,9 @@ double reflected_radiance(const ReflectedLightField& field, const Vec3& normal, 
 
 std::span<const double> ShrmMap::texel(int x, int y) const {
   const std::size_t count = coefficient_count(order_p);
-  const std::size_t offset =
-      (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)) *
-      count;
+  const std::size_t offset = (static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                              static_cast<std::size_t>(x)) *
+                             count;
   return std::span<const double>(coefficients).subspan(offset, count);
 }
 
@@ -441,9 +440,8 @@ ShrmMap local_shrm_map(const ReflectedLightField& field, int width, int height) 
   map.height = height;
   map.order_p = order_p;
   map.global = false;
-  map.coefficients.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) *
-                              count_p,
-                          0.0);
+  map.coefficients.assign(
+      static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * count_p, 0.0);
   // Per row: cos_part[m' count_p + pq] and sin_part[...] (header, local_shrm_map) with
   // D^l(R_C) = Dz(beta) d^l(alpha) and Dz's columns m' (cos m'b at row m', sin m'b at row -m')
   // and -m' (-sin m'b at row m', cos m'b at row -m'):

@@ -8,12 +8,23 @@ void check_error(const char* where) {
   std::string errors;
   for (GLenum error = glGetError(); error != GL_NO_ERROR; error = glGetError()) {
     switch (error) {
-      case GL_INVALID_ENUM: errors += " GL_INVALID_ENUM"; break;
-      case GL_INVALID_VALUE: errors += " GL_INVALID_VALUE"; break;
-      case GL_INVALID_OPERATION: errors += " GL_INVALID_OPERATION"; break;
-      case GL_INVALID_FRAMEBUFFER_OPERATION: errors += " GL_INVALID_FRAMEBUFFER_OPERATION"; break;
-      case GL_OUT_OF_MEMORY: errors += " GL_OUT_OF_MEMORY"; break;
-      default: errors += " GL error " + std::to_string(error);
+      case GL_INVALID_ENUM:
+        errors += " GL_INVALID_ENUM";
+        break;
+      case GL_INVALID_VALUE:
+        errors += " GL_INVALID_VALUE";
+        break;
+      case GL_INVALID_OPERATION:
+        errors += " GL_INVALID_OPERATION";
+        break;
+      case GL_INVALID_FRAMEBUFFER_OPERATION:
+        errors += " GL_INVALID_FRAMEBUFFER_OPERATION";
+        break;
+      case GL_OUT_OF_MEMORY:
+        errors += " GL_OUT_OF_MEMORY";
+        break;
+      default:
+        errors += " GL error " + std::to_string(error);
     }
     if (errors.size() > 400) break;  // a lost context can report errors forever
   }

@@ -37,8 +37,9 @@ std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
     glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &stamps[i]);  // waits
   // Timestamps are monotonic; a driver that returns garbage must not give negative times.
   auto query_ms = [&](std::size_t from, std::size_t to) {
-    return stamps[to] >= stamps[from] ? double(stamps[to] - stamps[from]) / kNanosecondsPerMillisecond
-                                      : 0.0;
+    return stamps[to] >= stamps[from]
+               ? double(stamps[to] - stamps[from]) / kNanosecondsPerMillisecond
+               : 0.0;
   };
   auto wall_ms = [&](std::size_t from, std::size_t to) {
     if (source_ != TimingSource::FinishWallClock) return 0.0;  // unsynchronised: meaningless
@@ -48,7 +49,8 @@ std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
   for (std::size_t i = 1; i < stamps.size(); ++i)
     passes.push_back({names_[i - 1], query_ms(i - 1, i), wall_ms(i - 1, i)});
   frame = {"frame", 0.0, 0.0};
-  if (stamps.size() > 1) frame = {"frame", query_ms(0, stamps.size() - 1), wall_ms(0, wall_.size() - 1)};
+  if (stamps.size() > 1)
+    frame = {"frame", query_ms(0, stamps.size() - 1), wall_ms(0, wall_.size() - 1)};
   return passes;
 }
 

@@ -59,8 +59,7 @@ std::vector<float> HdrTarget::read_rgba_top_down() const {
   if (bytes > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
     throw GlError("HDR target read-back: " + std::to_string(width_) + "x" +
                   std::to_string(height_) + " is larger than one GL read can return");
-  glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(bytes),
-                    pixels.data());
+  glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(bytes), pixels.data());
   check_error("HDR target read-back");
   // GL's rows run bottom-up: flip in place (no second copy of a possibly large image).
   for (int y = 0; y < height_ / 2; ++y)

@@ -77,8 +77,7 @@ unsigned char quantize_8bit(double encoded, int x, int y) {
 
 double srgb_encode(double linear) {
   const double x = std::clamp(linear, 0.0, 1.0);
-  return x <= kSrgbLinearThreshold ? kSrgbLinearSlope * x
-                                   : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
+  return x <= kSrgbLinearThreshold ? kSrgbLinearSlope * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
 }
 
 double tone_map(double radiance, double exposure) {
@@ -89,8 +88,8 @@ double tone_map(double radiance, double exposure) {
 void write_exr(const std::string& path, const Image& image, ExrPixelType type,
                const Metadata& metadata) {
   check_image(path, image);
-  const oiio::TypeDesc format = type == ExrPixelType::Half ? oiio::TypeDesc::HALF
-                                                           : oiio::TypeDesc::FLOAT;
+  const oiio::TypeDesc format =
+      type == ExrPixelType::Half ? oiio::TypeDesc::HALF : oiio::TypeDesc::FLOAT;
   oiio::ImageSpec spec(image.width, image.height, 4, format);
   spec.attribute("compression", "zip");
   spec.attribute("oiio:ColorSpace", "Linear");

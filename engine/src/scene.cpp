@@ -68,7 +68,7 @@ void assign(std::string& dst, const json& v) { dst = v.get<std::string>(); }
 void assign(std::optional<std::string>& dst, const json& v) { dst = v.get<std::string>(); }
 
 template <class E>
-  requires std::is_enum_v<E>
+requires std::is_enum_v<E>
 void assign(E& dst, const json& v) {
   const auto& name = v.get_ref<const std::string&>();
   for (const auto& [spelling, value] : EnumNames<E>::values) {
@@ -103,11 +103,11 @@ struct Range {
 };
 
 struct KeyDesc {
-  std::string_view path;          // "camera.height"
+  std::string_view path;  // "camera.height"
   Kind kind = Kind::Number;
-  Range range;                    // Number and Integer only
-  std::vector<std::string_view> allowed;  // Enum only
-  std::string_view text_range;    // String only: what is accepted, in words
+  Range range;                                  // Number and Integer only
+  std::vector<std::string_view> allowed;        // Enum only
+  std::string_view text_range;                  // String only: what is accepted, in words
   bool (*text_ok)(std::string_view) = nullptr;  // String only: an extra format check
   std::string_view unit;
   std::string_view default_json;  // JSON text; empty = no default (the key is absent)
@@ -145,8 +145,8 @@ KeyDesc enumeration(std::string_view path, std::string_view def, std::string_vie
 
 // A string field restricted to a fixed list of words.
 template <auto... M>
-KeyDesc choice(std::string_view path, std::vector<std::string_view> allowed,
-               std::string_view def, std::string_view doc) {
+KeyDesc choice(std::string_view path, std::vector<std::string_view> allowed, std::string_view def,
+               std::string_view doc) {
   static_assert(std::is_same_v<FieldType<M...>, std::string>);
   return {path, Kind::Enum, {}, std::move(allowed), {}, nullptr, {}, def, doc, &store<M...>};
 }
@@ -167,21 +167,21 @@ constexpr std::string_view kUtcFormat = "ISO 8601 UTC time YYYY-MM-DDTHH:MM:SS[.
 const std::vector<KeyDesc>& key_table() {
   using S = Scene;
   static const std::vector<KeyDesc> table = {
-      integer<&S::image, &ImageSettings::width>(
-          "image.width", {1, 8192}, "pixels", "960", "Width of the rendered image."),
-      integer<&S::image, &ImageSettings::height>(
-          "image.height", {1, 8192}, "pixels", "540", "Height of the rendered image."),
+      integer<&S::image, &ImageSettings::width>("image.width", {1, 8192}, "pixels", "960",
+                                                "Width of the rendered image."),
+      integer<&S::image, &ImageSettings::height>("image.height", {1, 8192}, "pixels", "540",
+                                                 "Height of the rendered image."),
       number<&S::image, &ImageSettings::exposure>(
           "image.exposure", {0, 1e6, true}, "1/(W m^-2 sr^-1 nm^-1)", "10",
           "Scale of radiance before the PNG tone curve 1 - exp(-exposure * L); the EXR is not "
           "scaled."),
-      enumeration<&S::image, &ImageSettings::exr_type>(
-          "image.exr_type", "\"half\"", "Pixel type of the EXR output."),
+      enumeration<&S::image, &ImageSettings::exr_type>("image.exr_type", "\"half\"",
+                                                       "Pixel type of the EXR output."),
 
-      number<&S::camera, &CameraSettings::lat>(
-          "camera.lat", {-90, 90}, kDegrees, "20", "Geodetic (WGS84) latitude of the camera."),
-      number<&S::camera, &CameraSettings::lon>(
-          "camera.lon", {-180, 180}, kDegrees, "-150", "Longitude of the camera, east positive."),
+      number<&S::camera, &CameraSettings::lat>("camera.lat", {-90, 90}, kDegrees, "20",
+                                               "Geodetic (WGS84) latitude of the camera."),
+      number<&S::camera, &CameraSettings::lon>("camera.lon", {-180, 180}, kDegrees, "-150",
+                                               "Longitude of the camera, east positive."),
       number<&S::camera, &CameraSettings::height>(
           "camera.height", {-11000, 1e9}, "m", "4",
           "Height of the camera above the ellipsoid (sea level)."),
@@ -193,9 +193,10 @@ const std::vector<KeyDesc>& key_table() {
           "Elevation of the view direction above the horizontal; -90 looks straight down."),
       number<&S::camera, &CameraSettings::roll>(
           "camera.roll", {-180, 180}, kDegrees, "0",
-          "Bank about the view direction; positive banks right, turning the horizon counterclockwise in the image."),
-      number<&S::camera, &CameraSettings::fov_y>(
-          "camera.fov_y", {0.01, 179}, kDegrees, "45", "Vertical field of view."),
+          "Bank about the view direction; positive banks right, turning the horizon "
+          "counterclockwise in the image."),
+      number<&S::camera, &CameraSettings::fov_y>("camera.fov_y", {0.01, 179}, kDegrees, "45",
+                                                 "Vertical field of view."),
 
       number<&S::sun, &SunSettings::zenith>(
           "sun.zenith", {0, 180}, kDegrees, "60",
@@ -208,8 +209,7 @@ const std::vector<KeyDesc>& key_table() {
           "A UTC instant that places the sun for the camera's position; excludes sun.zenith and "
           "sun.azimuth."),
 
-      number<&S::time>(
-          "time", {0, 1e12}, "s", "0", "Simulation time, which moves the waves."),
+      number<&S::time>("time", {0, 1e12}, "s", "0", "Simulation time, which moves the waves."),
 
       enumeration<&S::planet, &PlanetSettings::shape>(
           "planet.shape", "\"wgs84\"", "Shape of the planet: the WGS84 ellipsoid or a sphere."),
@@ -217,23 +217,22 @@ const std::vector<KeyDesc>& key_table() {
           "planet.radius", {1e3, 1e8}, "m", "6371000",
           "Radius of the planet when planet.shape is sphere."),
 
-      number<&S::ocean, &OceanSettings::wind_speed>(
-          "ocean.wind_speed", {0, 60}, "m/s", "10", "Wind speed 19.5 m above the sea."),
+      number<&S::ocean, &OceanSettings::wind_speed>("ocean.wind_speed", {0, 60}, "m/s", "10",
+                                                    "Wind speed 19.5 m above the sea."),
       number<&S::ocean, &OceanSettings::wind_direction>(
           "ocean.wind_direction", {-360, 360}, kDegrees, "180",
           "Direction the wind blows from, clockwise from north."),
-      enumeration<&S::ocean, &OceanSettings::spectrum>(
-          "ocean.spectrum", "\"pierson-moskowitz\"", "Wave spectrum of the sea."),
-      integer<&S::ocean, &OceanSettings::waves>(
-          "ocean.waves", {1, 4096}, "", "60", "Number of trochoidal waves."),
+      enumeration<&S::ocean, &OceanSettings::spectrum>("ocean.spectrum", "\"pierson-moskowitz\"",
+                                                       "Wave spectrum of the sea."),
+      integer<&S::ocean, &OceanSettings::waves>("ocean.waves", {1, 4096}, "", "60",
+                                                "Number of trochoidal waves."),
       number<&S::ocean, &OceanSettings::lambda_min>(
           "ocean.lambda_min", {1e-3, 1e4}, "m", "0.02",
           "Shortest wavelength drawn; must not exceed ocean.lambda_max."),
-      number<&S::ocean, &OceanSettings::lambda_max>(
-          "ocean.lambda_max", {1e-3, 1e4}, "m", "30", "Longest wavelength drawn."),
-      integer<&S::ocean, &OceanSettings::seed>(
-          "ocean.seed", {0, 4294967295.0}, "", "1",
-          "Random seed of the wave directions and phases."),
+      number<&S::ocean, &OceanSettings::lambda_max>("ocean.lambda_max", {1e-3, 1e4}, "m", "30",
+                                                    "Longest wavelength drawn."),
+      integer<&S::ocean, &OceanSettings::seed>("ocean.seed", {0, 4294967295.0}, "", "1",
+                                               "Random seed of the wave directions and phases."),
       number<&S::ocean, &OceanSettings::n_min>(
           "ocean.n_min", {0, 100}, "", "1",
           "N_min of the filter weights (paper sec. 3.2): waves shorter than n_min grid cells "
@@ -242,15 +241,14 @@ const std::vector<KeyDesc>& key_table() {
           "ocean.n_max", {0, 100}, "", "2.5",
           "N_max of the filter weights: waves longer than n_max cells (or pixels) are kept "
           "whole."),
-      number<&S::ocean, &OceanSettings::grid_cell>(
-          "ocean.grid_cell", {1, 64}, "pixels", "8",
-          "Size of a cell of the projected grid."),
+      number<&S::ocean, &OceanSettings::grid_cell>("ocean.grid_cell", {1, 64}, "pixels", "8",
+                                                   "Size of a cell of the projected grid."),
       number<&S::ocean, &OceanSettings::fresnel_r>(
           "ocean.fresnel_r", {0, 1}, "", "0.02",
           "Fresnel reflectance of the sea at normal incidence (R of the paper's eq. 14)."),
 
-      choice<&S::sky, &SkySettings::model>(
-          "sky.model", {"atmosphere"}, "\"atmosphere\"", "Sky model used when sky.exr is empty."),
+      choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
+                                           "Sky model used when sky.exr is empty."),
       text<&S::sky, &SkySettings::exr>(
           "sky.exr", "a file path, or empty", nullptr, "\"\"",
           "Equirectangular HDR sky image to use instead of sky.model; relative to the working "
@@ -378,7 +376,8 @@ std::string describe(const json& v) {
   std::string msg = std::string(source) + ": " + (key.empty() ? "" : std::string(key) + ": ") +
                     "expected " + std::string(expected) + ", got " + std::string(got);
   // One line whatever a file name or a value contains.
-  std::replace_if(msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   throw SceneError(msg);
 }
 
@@ -421,10 +420,10 @@ std::string suggestion(std::string_view unknown) {
 
 [[noreturn]] void fail_unknown(std::string_view source, std::string_view path) {
   const std::string near = suggestion(path);
-  fail(source, path,
-       near.empty() ? "a known key (see docs/scene.md)"
-                    : "a known key (did you mean " + near + "?)",
-       "an unknown key");
+  fail(
+      source, path,
+      near.empty() ? "a known key (see docs/scene.md)" : "a known key (did you mean " + near + "?)",
+      "an unknown key");
 }
 
 // Checks one value against its key and returns it in canonical form (numbers as doubles,
@@ -850,10 +849,18 @@ const std::vector<SceneKeyInfo>& scene_keys() {
       SceneKeyInfo info;
       info.path = k.path;
       switch (k.kind) {
-        case Kind::Number: info.type = "number"; break;
-        case Kind::Integer: info.type = "integer"; break;
-        case Kind::String: info.type = "string"; break;
-        case Kind::Enum: info.type = "enum"; break;
+        case Kind::Number:
+          info.type = "number";
+          break;
+        case Kind::Integer:
+          info.type = "integer";
+          break;
+        case Kind::String:
+          info.type = "string";
+          break;
+        case Kind::Enum:
+          info.type = "enum";
+          break;
       }
       info.unit = k.unit;
       info.range = range_text(k);

@@ -63,12 +63,18 @@ StateGuard::~StateGuard() {
   glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
   glUseProgram(static_cast<GLuint>(program_));
   glBindVertexArray(static_cast<GLuint>(vertex_array_));
-  if (depth_test_) glEnable(GL_DEPTH_TEST); else glDisable(GL_DEPTH_TEST);
+  if (depth_test_)
+    glEnable(GL_DEPTH_TEST);
+  else
+    glDisable(GL_DEPTH_TEST);
   glDepthMask(depth_mask_);
   glDepthFunc(static_cast<GLenum>(depth_func_));
   glClipControl(static_cast<GLenum>(clip_origin_), static_cast<GLenum>(clip_depth_mode_));
   for (int i = 0; i < kCapabilityCount; ++i)
-    if (capabilities_[i]) glEnable(kCapabilities[i]); else glDisable(kCapabilities[i]);
+    if (capabilities_[i])
+      glEnable(kCapabilities[i]);
+    else
+      glDisable(kCapabilities[i]);
   glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
   // Core profile: one mode for both faces, so the front face's value stands for both.
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));

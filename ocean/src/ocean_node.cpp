@@ -23,8 +23,6 @@ class OceanNode final : public gl::Node {
         waves_(make_wave_set(options.settings)),
         wave_buffer_(gl::make_buffer()),
         tail_buffer_(gl::make_buffer()),
-        vertex_buffer_(gl::make_buffer()),
-        index_buffer_(gl::make_buffer()),
         vertex_array_(gl::make_vertex_array()) {
     // Wave parameters change only with the scene; phases change every frame (uploaded in draw).
     const std::size_t n = waves_.waves.size();
@@ -73,8 +71,8 @@ class OceanNode final : public gl::Node {
                        float(options_.settings.fresnel_r));
     glProgramUniform3f(lighting, location(lighting, "deep_reflectance"), float(reflectance.x),
                        float(reflectance.y), float(reflectance.z));
-    glProgramUniform3f(lighting, location(lighting, "horizontal_irradiance"),
-                       float(irradiance.x), float(irradiance.y), float(irradiance.z));
+    glProgramUniform3f(lighting, location(lighting, "horizontal_irradiance"), float(irradiance.x),
+                       float(irradiance.y), float(irradiance.z));
     if (underwater) {
       glUseProgram(lighting);
       gl::draw_fullscreen_pass();
@@ -166,7 +164,8 @@ class OceanNode final : public gl::Node {
     camera.height = inputs.camera_height;
     camera.width = inputs.width;
     camera.height_px = inputs.height;
-    const ProjectedGrid grid = make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
+    const ProjectedGrid grid =
+        make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
     if (grid.rows == 0) return;
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 3);
@@ -174,7 +173,8 @@ class OceanNode final : public gl::Node {
       for (double value : {grid.rest[k].x, grid.rest[k].y, grid.cell_size[k]})
         vertices.push_back(static_cast<float>(value));
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
-    const GLsizeiptr index_bytes = static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint32_t));
+    const GLsizeiptr index_bytes =
+        static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint32_t));
     // Sizes follow the image, fixed for a renderer: allocate once, update each frame.
     if (vertex_bytes != vertex_capacity_ || index_bytes != index_capacity_) {
       vertex_buffer_ = gl::make_buffer();
@@ -194,7 +194,8 @@ class OceanNode final : public gl::Node {
     GLint previous_vertex_array = 0;
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous_vertex_array);
     glBindVertexArray(vertex_array_.get());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid.indices.size()), GL_UNSIGNED_INT,
+                   nullptr);
     glBindVertexArray(static_cast<GLuint>(previous_vertex_array));
   }
 
@@ -217,11 +218,13 @@ class OceanNode final : public gl::Node {
     for (double px : {0.5, 0.5 * inputs.width, inputs.width - 1.5})
       for (double py : {0.5, 0.5 * inputs.height, inputs.height - 1.5}) {
         glm::dvec2 p, px1, py1;
-        if (!on_sea(px, py, p) || !on_sea(px + 1.0, py, px1) || !on_sea(px, py + 1.0, py1)) continue;
+        if (!on_sea(px, py, p) || !on_sea(px + 1.0, py, px1) || !on_sea(px, py + 1.0, py1))
+          continue;
         smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
       }
     if (!std::isfinite(smallest)) return 0;
-    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.settings.n_min, options_.settings.n_max)
+    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.settings.n_min,
+                               options_.settings.n_max)
         .positive;
   }
 
@@ -229,7 +232,7 @@ class OceanNode final : public gl::Node {
   WaveSet waves_;
   gl::Buffer wave_buffer_;
   gl::Buffer tail_buffer_;
-  gl::Buffer vertex_buffer_;
+  gl::Buffer vertex_buffer_;  // created with the first grid, resized with the image
   gl::Buffer index_buffer_;
   gl::VertexArray vertex_array_;
   gl::Framebuffer gbuffer_;

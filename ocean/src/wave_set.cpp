@@ -53,9 +53,7 @@ double uniform(std::mt19937_64& generator) {
 }
 
 // (4 beta / 5)^(1/4): omega_p / omega_0 = V / c_p for the PM spectrum (wave_set.hpp).
-double pm_peak_ratio() {
-  return std::pow(4.0 * kPiersonMoskowitzBeta / 5.0, 0.25);
-}
+double pm_peak_ratio() { return std::pow(4.0 * kPiersonMoskowitzBeta / 5.0, 0.25); }
 
 // x mod 2 pi for a double x, in about [-pi, pi] (|x| < 2^53 2 pi): n = nearest integer to
 // x / 2 pi; x - n 2 pi = (x - n kTwoPi) - n kTwoPiTail, each with one FMA: the products are exact
@@ -221,8 +219,8 @@ WaveSet make_wave_set(const OceanSettings& settings, double max_steepness) {
   set.crosswind = glm::dvec2(-set.downwind.y, set.downwind.x);
 
   const double peak_omega = pierson_moskowitz_peak_angular_frequency(set.wind_speed);
-  set.peak_wavelength = set.wind_speed > 0.0 ? 2.0 * kPi * kGravity / (peak_omega * peak_omega)
-                                             : 0.0;
+  set.peak_wavelength =
+      set.wind_speed > 0.0 ? 2.0 * kPi * kGravity / (peak_omega * peak_omega) : 0.0;
 
   // Geometric progression, i = 0 the longest: ln(lambda_i) = ln(lambda_max) - i step.
   const double log_span = std::log(set.lambda_max / set.lambda_min);
@@ -235,9 +233,9 @@ WaveSet make_wave_set(const OceanSettings& settings, double max_steepness) {
   for (int i = 0; i < n; ++i) {
     Wave& wave = set.waves[i];
     // The last wave is lambda_min exactly (no rounding of the exponential at the end).
-    wave.wavelength = i == 0          ? set.lambda_max
-                      : i == n - 1    ? set.lambda_min
-                                      : set.lambda_max * std::exp(-i * log_step);
+    wave.wavelength = i == 0       ? set.lambda_max
+                      : i == n - 1 ? set.lambda_min
+                                   : set.lambda_max * std::exp(-i * log_step);
     wave.wavenumber = 2.0 * kPi / wave.wavelength;
     wave.angular_frequency = std::sqrt(kGravity * wave.wavenumber);
     // Draws, in this order: the angle, then the phase.
@@ -251,9 +249,9 @@ WaveSet make_wave_set(const OceanSettings& settings, double max_steepness) {
     wave.wave_vector = wave.wavenumber * wave.direction;
     wave.phase = kTwoPi * u_phase;  // in [0, 2 pi): u < 1 and kTwoPi < 2 pi
     // PM amplitude of the wave's band: h = sqrt(2 S(omega) omega Delta).
-    wave.amplitude = std::sqrt(2.0 * pierson_moskowitz_spectrum(wave.angular_frequency,
-                                                                set.wind_speed) *
-                               wave.angular_frequency * set.log_omega_band);
+    wave.amplitude =
+        std::sqrt(2.0 * pierson_moskowitz_spectrum(wave.angular_frequency, set.wind_speed) *
+                  wave.angular_frequency * set.log_omega_band);
   }
 
   const auto clamp_all = [&set, max_steepness]() {
@@ -295,8 +293,7 @@ WaveSet make_wave_set(const OceanSettings& settings, double max_steepness) {
 }
 
 SlopeVariance trochoid_slope_variance(const Wave& wave, double weight) {
-  const double variance =
-      glsl::TrochoidSlopeVariance(wave.wavenumber * weight * wave.amplitude);
+  const double variance = glsl::TrochoidSlopeVariance(wave.wavenumber * weight * wave.amplitude);
   const double c = std::cos(wave.angle);
   const double s = std::sin(wave.angle);
   return {c * c * variance, s * s * variance};

@@ -93,9 +93,10 @@ struct Renderer::Impl {
         timer(gl::GpuTimer::source_for_renderer(info.renderer)) {
     // A user's sky photograph must not be silently replaced by the model sky.
     if (!scene.sky.exr.empty())
-      throw SceneError("sky.exr: expected an empty value (skies from HDR images come with the "
-                       "environment-map provider, not yet in this version), got \"" +
-                       scene.sky.exr + "\"");
+      throw SceneError(
+          "sky.exr: expected an empty value (skies from HDR images come with the "
+          "environment-map provider, not yet in this version), got \"" +
+          scene.sky.exr + "\"");
     if (!info.missing.empty()) {
       std::string missing;
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
@@ -192,19 +193,18 @@ RenderStats Renderer::stats() const {
   stats.frames = static_cast<int>(m.frame_ms.size());
   stats.frame_ms = median(m.frame_ms);
   stats.timing = m.timer.source() == gl::TimingSource::FinishWallClock ? "finish_wall_clock"
-                                                               : "gl_timestamp_query";
+                                                                       : "gl_timestamp_query";
   for (const auto& name : m.pass_order) {
     auto it = m.pass_ms.find(name);
     if (it != m.pass_ms.end()) stats.passes.emplace_back(name, median(it->second));
   }
   for (const auto& node : m.graph.nodes())
     stats.resolved_waves = std::max(stats.resolved_waves, node->resolved_waves());
-  stats.built.push_back("engine.hdr_target.rgba32f+depth32f." + std::to_string(stats.width) +
-                        "x" + std::to_string(stats.height));
+  stats.built.push_back("engine.hdr_target.rgba32f+depth32f." + std::to_string(stats.width) + "x" +
+                        std::to_string(stats.height));
   for (const auto& node : m.graph.nodes())
     for (const auto& item : node->built()) stats.built.push_back(item);
-  for (const auto& program : m.shaders.built_programs())
-    stats.built.push_back("shader:" + program);
+  for (const auto& program : m.shaders.built_programs()) stats.built.push_back("shader:" + program);
   return stats;
 }
 

@@ -25,8 +25,9 @@ struct Result {
 class Cli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("thalassa_cli_" + std::to_string(getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("thalassa_cli_" + std::to_string(getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }
@@ -34,8 +35,8 @@ class Cli : public ::testing::Test {
 
   // Runs the program in dir_ with `args` (shell words), capturing stderr.
   Result run(const std::string& args, const std::string& prefix = "") {
-    const std::string command = "cd '" + dir_.string() + "' && " + prefix + "'" THALASSA_EXE "' " + args +
-                                " 2> stderr.txt > stdout.txt";
+    const std::string command = "cd '" + dir_.string() + "' && " + prefix + "'" THALASSA_EXE "' " +
+                                args + " 2> stderr.txt > stdout.txt";
     const int raw = std::system(command.c_str());
     Result result;
     result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -47,7 +48,9 @@ class Cli : public ::testing::Test {
     fs::remove(dir_ / "stdout.txt");
     return result;
   }
-  void write(const std::string& name, const std::string& text) { std::ofstream(dir_ / name) << text; }
+  void write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name) << text;
+  }
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename());
@@ -126,7 +129,8 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
   const auto built_z = nlohmann::json::parse(in_z)["built"].get<std::vector<std::string>>();
   EXPECT_NE(std::find(built_z.begin(), built_z.end(), "atmosphere.analytic_sky"), built_z.end());
   EXPECT_NE(std::find(built_z.begin(), built_z.end(), "ocean.ross_brdf"), built_z.end());
-  EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status, 0);
+  EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status,
+            0);
   std::ifstream in3(dir_ / "u.json");
   EXPECT_EQ(nlohmann::json::parse(in3)["mode"], "space");
 }
@@ -135,8 +139,11 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
 // three (the sky behind the sea is the same in every render, so it is counted once).
 TEST_F(Cli, LightTermsAddUp) {
   for (const char* terms : {"sun,sky,sea", "sun", "sky", "sea"})
-    ASSERT_EQ(run("render " + kSmall + " --float --no-png --terms " + std::string(terms) +
-                  " -o " + std::string(terms) + ".exr").status, 0) << terms;
+    ASSERT_EQ(run("render " + kSmall + " --float --no-png --terms " + std::string(terms) + " -o " +
+                  std::string(terms) + ".exr")
+                  .status,
+              0)
+        << terms;
   const auto all = thalassa::read_image((dir_ / "sun,sky,sea.exr").string());
   const auto sun = thalassa::read_image((dir_ / "sun.exr").string());
   const auto sky = thalassa::read_image((dir_ / "sky.exr").string());
@@ -221,8 +228,8 @@ TEST_F(Cli, InfoPrintsBackendAndCapabilities) {
 // With no display and an EGL that finds no driver (GLVND pointed at no vendor library), the
 // default backend falls back to OSMesa and the render still succeeds.
 TEST_F(Cli, DefaultFallsBackToOsMesaWithoutEgl) {
-  const Result r = run("render " + kSmall +
-                       " --no-png --stats s.json", "env -u DISPLAY -u WAYLAND_DISPLAY "
+  const Result r = run("render " + kSmall + " --no-png --stats s.json",
+                       "env -u DISPLAY -u WAYLAND_DISPLAY "
                        "__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json ");
   ASSERT_EQ(r.status, 0) << r.err;
   std::ifstream in(dir_ / "s.json");
@@ -235,7 +242,8 @@ TEST_F(Cli, BothHeadlessBackendsRenderTheSameImage) {
   thalassa::Metadata meta_a, meta_b;
   const auto a = thalassa::read_image((dir_ / "egl.exr").string(), &meta_a);
   const auto b = thalassa::read_image((dir_ / "osmesa.exr").string(), &meta_b);
-  std::map<std::string, std::string> ma(meta_a.begin(), meta_a.end()), mb(meta_b.begin(), meta_b.end());
+  std::map<std::string, std::string> ma(meta_a.begin(), meta_a.end()),
+      mb(meta_b.begin(), meta_b.end());
   if (ma["thalassa:renderer"] == mb["thalassa:renderer"]) {
     EXPECT_EQ(a.rgba, b.rgba);  // same rasteriser (llvmpipe): bit for bit
   } else {

@@ -65,7 +65,8 @@ TEST_P(Golden, MatchesGoldenImage) {
     }
     return;
   }
-  ASSERT_TRUE(fs::exists(golden_path)) << golden_path << " is missing: run scripts/regenerate-goldens";
+  ASSERT_TRUE(fs::exists(golden_path))
+      << golden_path << " is missing: run scripts/regenerate-goldens";
   const Image golden = read_image(golden_path);
   ASSERT_EQ(golden.width, image.width);
   ASSERT_EQ(golden.height, image.height);

@@ -91,7 +91,8 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double expected = 255.0 * tone_map(hdr.pixel(x, height - 1 - y)[c], scene.image.exposure);
+        const double expected =
+            255.0 * tone_map(hdr.pixel(x, height - 1 - y)[c], scene.image.exposure);
         if (std::abs(pixels[(y * width + x) * 4 + c] - expected) > 1.01) ++mismatches;
       }
   EXPECT_EQ(mismatches, 0);

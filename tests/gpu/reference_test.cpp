@@ -11,11 +11,11 @@
 #include "analytic_sky_reference.hpp"
 #include "flat_sea_reference.hpp"
 #include "ross_brdf_reference.hpp"
-#include "thalassa/ocean/wave_set.hpp"
-#include "trochoids_reference.hpp"
 #include "test_support.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/ocean/wave_set.hpp"
+#include "trochoids_reference.hpp"
 
 namespace thalassa {
 namespace {
@@ -28,7 +28,7 @@ constexpr int kHeight = 40;
 glm::vec3 grid_direction(int x, int y) {
   const double azimuth = 2.0 * M_PI * (x + 0.5) / kWidth;
   const double s = 2.0 * (y + 0.5) / kHeight - 1.0;  // (-1, 1)
-  const double elevation = 0.5 * M_PI * s * s * s;     // cubic: dense near the horizon
+  const double elevation = 0.5 * M_PI * s * s * s;   // cubic: dense near the horizon
   return glm::vec3(std::cos(elevation) * std::sin(azimuth), std::cos(elevation) * std::cos(azimuth),
                    std::sin(elevation));
 }
@@ -79,8 +79,8 @@ class ReferenceTest : public ::testing::Test {
                        reflectance.y, reflectance.z);
     glProgramUniform3f(program, glGetUniformLocation(program, "horizontal_irradiance"),
                        irradiance.x, irradiance.y, irradiance.z);
-    glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"),
-                       slope_variance.x, slope_variance.y);
+    glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"), slope_variance.x,
+                       slope_variance.y);
     glBindVertexArray(vao_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
@@ -169,12 +169,12 @@ TEST_F(ReferenceTest, FlatSeaRadianceMatchesDoubleReference) {
   const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
   for (double zenith : kSunZeniths) {
     const glm::dvec3 sun = sun_at(zenith);
-    const glm::dvec3 irradiance =
-        glm::dvec3(glm::vec3(glsl::AnalyticSunHorizontalIrradiance(sun) + glsl::AnalyticSkyIrradiance(sun)));
+    const glm::dvec3 irradiance = glm::dvec3(
+        glm::vec3(glsl::AnalyticSunHorizontalIrradiance(sun) + glsl::AnalyticSkyIrradiance(sun)));
     const auto gpu = evaluate(4, sun, 10.0, reflectance, irradiance);
     const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
-      return glm::dvec4(glsl::FlatSeaRadianceWithIrradiance(v, sun, 10.0, glm::dvec3(glm::vec3(reflectance)),
-                                                            irradiance),
+      return glm::dvec4(glsl::FlatSeaRadianceWithIrradiance(
+                            v, sun, 10.0, glm::dvec3(glm::vec3(reflectance)), irradiance),
                         1.0);
     });
     std::printf("sea radiance, sun zenith %5.1f deg: worst relative error %.3g\n", zenith, worst);
@@ -183,16 +183,17 @@ TEST_F(ReferenceTest, FlatSeaRadianceMatchesDoubleReference) {
 
 TEST_F(ReferenceTest, RossBrdfSunFresnelAndLambdaMatchDoubleReference) {
   // Slope variances (along, across the wind): a calm sea, the default 10 m/s sea, a rough one.
-  for (const glm::dvec2 variance : {glm::dvec2(2e-4, 1e-4), glm::dvec2(0.0153, 0.0145),
-                                    glm::dvec2(0.09, 0.05)}) {
+  for (const glm::dvec2 variance :
+       {glm::dvec2(2e-4, 1e-4), glm::dvec2(0.0153, 0.0145), glm::dvec2(0.09, 0.05)}) {
     for (double zenith : kSunZeniths) {
       const glm::dvec3 sun = sun_at(zenith);
       const glm::dvec2 sv = glm::dvec2(glm::vec2(variance));  // as the GPU sees it
       const auto gpu = evaluate(5, sun, 0, {}, {}, sv);
       const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
-        return glm::dvec4(glsl::OceanReflectedSun(v, sun, sv, 0.02),
-                          glsl::OceanEffectiveFresnel(v.z, glsl::OceanSlopeVarianceToward(v, sv), 0.02),
-                          glsl::OceanSmithLambdaToward(v, sv), 1.0);
+        return glm::dvec4(
+            glsl::OceanReflectedSun(v, sun, sv, 0.02),
+            glsl::OceanEffectiveFresnel(v.z, glsl::OceanSlopeVarianceToward(v, sv), 0.02),
+            glsl::OceanSmithLambdaToward(v, sv), 1.0);
       });
       std::printf("Ross sun/Fresnel/Lambda, variance (%g, %g), sun zenith %5.1f deg: worst %.3g\n",
                   sv.x, sv.y, zenith, worst);
@@ -240,7 +241,8 @@ class PrecisionTest : public ReferenceTest {
     const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
                                               .fragment = "evaluate.frag",
                                               .defines = {{"FUNCTION", std::to_string(function)}}});
-    glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"), GLint(set.waves.size()));
+    glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
+                       GLint(set.waves.size()));
     const auto gpu = evaluate(function, {0, 0, 1}, 0, {}, {});
     double worst = 0;
     for (std::size_t i = 0; i < local.size(); ++i) {

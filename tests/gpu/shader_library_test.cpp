@@ -77,7 +77,8 @@ TEST_F(ShaderLibraryGpu, ErrorInMainFileNamesItsLine) {
 
 TEST_F(ShaderLibraryGpu, PermutationsAreDistinctAndCached) {
   gl::ShaderLibrary library({root_});
-  const GLuint green = library.program({.vertex = "engine/fullscreen.vert", .fragment = "good.frag"});
+  const GLuint green =
+      library.program({.vertex = "engine/fullscreen.vert", .fragment = "good.frag"});
   const GLuint red = library.program(
       {.vertex = "engine/fullscreen.vert", .fragment = "good.frag", .defines = {{"RED", "1"}}});
   EXPECT_NE(green, 0u);

@@ -19,8 +19,8 @@ using test::IsFiniteNonNegative;
 using test::RelativeDifference;
 
 double MaxRelativeDifference(const vec3& a, const vec3& b) {
-  return std::max({RelativeDifference(a.x, b.x), RelativeDifference(a.y, b.y),
-                   RelativeDifference(a.z, b.z)});
+  return std::max(
+      {RelativeDifference(a.x, b.x), RelativeDifference(a.y, b.y), RelativeDifference(a.z, b.z)});
 }
 
 // D(a, b) = (exp(-a) - exp(-b)) / (b - a) in long double with expm1, the reference for the
@@ -240,8 +240,7 @@ TEST(AnalyticSky, SunDiscRadianceIntegratesToTheTransmittedIrradiance) {
     const vec3 expected = ANALYTIC_SKY_SOLAR_IRRADIANCE *
                           exp(-ANALYTIC_SKY_RAYLEIGH_OPTICAL_DEPTH * AnalyticSkyAirmass(sun.z));
     EXPECT_LT(MaxRelativeDifference(AnalyticSunTransmittedIrradiance(sun), expected), 1e-14);
-    EXPECT_LT(MaxRelativeDifference(AnalyticSunHorizontalIrradiance(sun), expected * sun.z),
-              1e-14);
+    EXPECT_LT(MaxRelativeDifference(AnalyticSunHorizontalIrradiance(sun), expected * sun.z), 1e-14);
   }
   // The solid angle of a cone of half-angle r: 2 pi (1 - cos r).
   const double r = ANALYTIC_SKY_SUN_ANGULAR_RADIUS;

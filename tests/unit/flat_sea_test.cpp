@@ -41,11 +41,11 @@ double GlintDirectionalAlbedo(const vec3& sun, double slope_variance) {
     const double dalpha = 2.0 * PI * t * dt;
     for (int j = 0; j < kAzimuthSteps; ++j) {
       const double psi = (j + 0.5) * dpsi;
-      const vec3 view = std::cos(alpha) * mirror +
-                        std::sin(alpha) * (std::cos(psi) * t1 + std::sin(psi) * t2);
+      const vec3 view =
+          std::cos(alpha) * mirror + std::sin(alpha) * (std::cos(psi) * t1 + std::sin(psi) * t2);
       if (view.z <= 0.0) continue;
-      albedo += FlatSeaGlintFactor(view, sun, slope_variance) / sun.z * view.z *
-                std::sin(alpha) * dalpha * dpsi;
+      albedo += FlatSeaGlintFactor(view, sun, slope_variance) / sun.z * view.z * std::sin(alpha) *
+                dalpha * dpsi;
     }
   }
   return albedo;
@@ -70,9 +70,8 @@ double FresnelWeightedInterceptedFlux(const vec3& sun, double slope_variance) {
       const double cos_incidence = dot(sun, normal);
       const vec3 view = 2.0 * cos_incidence * normal - sun;
       if (cos_incidence <= 0.0 || view.z <= 0.0) continue;
-      const double masking_shadowing =
-          1.0 / (1.0 + FlatSeaSmithLambda(view.z, slope_variance) +
-                 FlatSeaSmithLambda(sun.z, slope_variance));
+      const double masking_shadowing = 1.0 / (1.0 + FlatSeaSmithLambda(view.z, slope_variance) +
+                                              FlatSeaSmithLambda(sun.z, slope_variance));
       flux += FlatSeaFresnel(cos_incidence) * cos_incidence / (normal.z * sun.z) *
               masking_shadowing * FlatSeaSlopePdf(zx, zy, slope_variance) * h * h;
     }
@@ -162,9 +161,11 @@ TEST(FlatSea, SmithLambdaMatchesHighPrecisionClosedForm) {
     double worst_theta = 0.0;
     for (int step = 1; step <= 8999; ++step) {
       const double theta_deg = 0.01 * step;  // 0.01 to 89.99 deg.
-      const long double theta = static_cast<long double>(theta_deg) * 3.141592653589793238462643383279502884L / 180.0L;
+      const long double theta =
+          static_cast<long double>(theta_deg) * 3.141592653589793238462643383279502884L / 180.0L;
       const double reference = static_cast<double>(ReferenceSmithLambda(theta, slope_variance));
-      const double lambda = FlatSeaSmithLambda(std::cos(static_cast<double>(theta)), slope_variance);
+      const double lambda =
+          FlatSeaSmithLambda(std::cos(static_cast<double>(theta)), slope_variance);
       ASSERT_TRUE(std::isfinite(lambda));
       ASSERT_GE(lambda, 0.0);
       if (reference > 1e-12) {
@@ -232,9 +233,9 @@ TEST(FlatSea, SmithFacingAreaMatchesTheSlopeIntegral) {
       const double lambda = FlatSeaSmithLambda(std::cos(theta), slope_variance);
       EXPECT_LT(RelativeDifference(std::cos(theta) * (1.0 + lambda), integral), 1e-5)
           << "sigma^2 " << slope_variance << " theta " << theta_deg;
-      EXPECT_LT(RelativeDifference(FlatSeaSmithFacingArea(std::cos(theta), slope_variance),
-                                   integral),
-                1e-5)
+      EXPECT_LT(
+          RelativeDifference(FlatSeaSmithFacingArea(std::cos(theta), slope_variance), integral),
+          1e-5)
           << "sigma^2 " << slope_variance << " theta " << theta_deg;
       std::printf("facing area, sigma^2 %.3f theta %4.1f deg: integral %.9g, closed form %.9g\n",
                   slope_variance, theta_deg, integral,
@@ -356,9 +357,9 @@ TEST(FlatSea, RadianceCombinesMirrorGlintAndDeepWater) {
     for (double view_zenith : {0.0, 40.0, 80.0}) {
       const vec3 view = Direction(view_zenith, 160.0);
       const double fresnel = FlatSeaFresnel(view.z);
-      const vec3 expected =
-          fresnel * AnalyticSkyRadiance(vec3(-view.x, -view.y, view.z), sun) +
-          FlatSeaSunGlint(view, sun, 7.0) + (1.0 - fresnel) * deep * irradiance / PI;
+      const vec3 expected = fresnel * AnalyticSkyRadiance(vec3(-view.x, -view.y, view.z), sun) +
+                            FlatSeaSunGlint(view, sun, 7.0) +
+                            (1.0 - fresnel) * deep * irradiance / PI;
       const vec3 radiance = FlatSeaRadiance(view, sun, 7.0, deep);
       for (int c = 0; c < 3; ++c) {
         EXPECT_LT(RelativeDifference(radiance[c], expected[c]), 1e-14);
@@ -384,13 +385,13 @@ TEST(FlatSea, FiniteForExtremeSunViewAndWind) {
           const vec3 view = Direction(view_zenith, view_azimuth);
           const vec3 radiance = FlatSeaRadiance(view, sun, wind_speed, deep);
           EXPECT_TRUE(IsFiniteNonNegative(radiance))
-              << "wind " << wind_speed << " sun " << sun_zenith << " view " << view_zenith
-              << " " << view_azimuth;
+              << "wind " << wind_speed << " sun " << sun_zenith << " view " << view_zenith << " "
+              << view_azimuth;
         }
       }
       // Exactly horizontal views, the view toward the sun, and v = -s (no mirroring facet).
-      for (const vec3& view : {vec3(0.0, 1.0, 0.0), vec3(0.0, -1.0, 0.0), vec3(1.0, 0.0, 0.0),
-                               sun, -sun, vec3(-sun.x, -sun.y, sun.z)}) {
+      for (const vec3& view : {vec3(0.0, 1.0, 0.0), vec3(0.0, -1.0, 0.0), vec3(1.0, 0.0, 0.0), sun,
+                               -sun, vec3(-sun.x, -sun.y, sun.z)}) {
         EXPECT_TRUE(IsFiniteNonNegative(FlatSeaRadiance(view, sun, wind_speed, deep)));
         EXPECT_TRUE(std::isfinite(FlatSeaGlintFactor(view, sun, 0.0)));
       }
@@ -437,16 +438,17 @@ TEST(FlatSea, GlintTowardTheHorizonIsMaskedAndFinite) {
   const double sigma = std::sqrt(slope_variance);
   const vec3 sun = Direction(60.0, 0.0);
   const auto view_at = [](double elevation_deg) { return Direction(90.0 - elevation_deg, 180.0); };
-  const double lambda_sun =
-      static_cast<double>(ReferenceSmithLambda(60.0L * 3.141592653589793238462643383279502884L / 180.0L, slope_variance));
+  const double lambda_sun = static_cast<double>(ReferenceSmithLambda(
+      60.0L * 3.141592653589793238462643383279502884L / 180.0L, slope_variance));
   // 1. At each elevation the glint is the unmasked one times G = 1 / (1 + Lambda_v + Lambda_s),
   // with Lambda from the long double closed form: G = 0.23 at 1 deg, 0.998 at 20 deg.
   for (double elevation : {1.0, 5.0, 20.0}) {
     const vec3 view = view_at(elevation);
-    const long double zenith = (90.0L - elevation) * 3.141592653589793238462643383279502884L / 180.0L;
+    const long double zenith =
+        (90.0L - elevation) * 3.141592653589793238462643383279502884L / 180.0L;
     const double lambda_view = static_cast<double>(ReferenceSmithLambda(zenith, slope_variance));
-    const double expected =
-        GlintWithMaskedCosView(view, sun, slope_variance, view.z * (1.0 + lambda_view + lambda_sun));
+    const double expected = GlintWithMaskedCosView(view, sun, slope_variance,
+                                                   view.z * (1.0 + lambda_view + lambda_sun));
     EXPECT_LT(RelativeDifference(FlatSeaGlintFactor(view, sun, slope_variance), expected), 1e-5)
         << "elevation " << elevation;
   }
@@ -455,12 +457,14 @@ TEST(FlatSea, GlintTowardTheHorizonIsMaskedAndFinite) {
   // Lambda_s) / (1 + Lambda(70 deg) + Lambda_s) = 4.28 / 1.002, far from 19.6.
   const double glint_1 = FlatSeaGlintFactor(view_at(1.0), sun, slope_variance);
   const double glint_20 = FlatSeaGlintFactor(view_at(20.0), sun, slope_variance);
-  const double unmasked_1 = GlintWithMaskedCosView(view_at(1.0), sun, slope_variance, view_at(1.0).z);
+  const double unmasked_1 =
+      GlintWithMaskedCosView(view_at(1.0), sun, slope_variance, view_at(1.0).z);
   const double unmasked_20 =
       GlintWithMaskedCosView(view_at(20.0), sun, slope_variance, view_at(20.0).z);
-  std::printf("glitter column, sun zenith 60 deg, wind 10 m/s: glint factor at 1 deg %.4g, at 20 "
-              "deg %.4g sr^-1 (unmasked %.4g, %.4g)\n",
-              glint_1, glint_20, unmasked_1, unmasked_20);
+  std::printf(
+      "glitter column, sun zenith 60 deg, wind 10 m/s: glint factor at 1 deg %.4g, at 20 "
+      "deg %.4g sr^-1 (unmasked %.4g, %.4g)\n",
+      glint_1, glint_20, unmasked_1, unmasked_20);
   EXPECT_LT(glint_1 / glint_20, 0.3 * unmasked_1 / unmasked_20);
   // 3. At the horizon itself the glint is the finite limit with cos theta_v (1 + Lambda_v +
   // Lambda_s) = sigma / (2 sqrt(pi)) (the facing area of a horizontal ray), and it is approached
@@ -468,12 +472,12 @@ TEST(FlatSea, GlintTowardTheHorizonIsMaskedAndFinite) {
   // O(cos^2 theta_v / sigma) (d/dc of integral (c - s q)_+ P(q) dq at c = 0 is P(q < 0) = 1/2),
   // so 0.01 deg above it the glint is within 0.2 % of the limit at the same geometry.
   const vec3 horizontal = view_at(0.0);
-  const double limit = GlintWithMaskedCosView(horizontal, sun, slope_variance,
-                                              sigma / (2.0 * std::sqrt(PI)));
+  const double limit =
+      GlintWithMaskedCosView(horizontal, sun, slope_variance, sigma / (2.0 * std::sqrt(PI)));
   EXPECT_LT(RelativeDifference(FlatSeaGlintFactor(horizontal, sun, slope_variance), limit), 1e-12);
   const vec3 near_horizon = view_at(0.01);
-  const double near_limit = GlintWithMaskedCosView(near_horizon, sun, slope_variance,
-                                                   sigma / (2.0 * std::sqrt(PI)));
+  const double near_limit =
+      GlintWithMaskedCosView(near_horizon, sun, slope_variance, sigma / (2.0 * std::sqrt(PI)));
   const double near = FlatSeaGlintFactor(near_horizon, sun, slope_variance);
   EXPECT_LT(near, near_limit);
   EXPECT_GT(near, near_limit * (1.0 - 0.002));

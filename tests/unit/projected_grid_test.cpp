@@ -29,7 +29,8 @@ GridCamera make_camera(double heading, double pitch, double roll, int width, int
 
 double ray_z(const GridCamera& c, glm::dvec2 image) {
   return (c.forward + (image.x * c.tan_half_fov_y * c.aspect) * c.right +
-          (image.y * c.tan_half_fov_y) * c.up).z;
+          (image.y * c.tan_half_fov_y) * c.up)
+      .z;
 }
 
 // Twice the signed area of triangle (a, b, c) in the image plane.

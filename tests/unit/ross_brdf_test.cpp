@@ -116,9 +116,9 @@ double IntegrateOverVisibleSlopes(const vec3& v, const vec2& slope_variance,
 // The pairs of per-axis slope standard deviations (sigma_x, sigma_y) of the identity tests:
 // isotropic from 1e-3 to 0.7, and anisotropic ones (along-wind larger, smaller, and extreme).
 const std::vector<vec2>& SigmaPairs() {
-  static const std::vector<vec2> pairs = {
-      {1e-3, 1e-3}, {0.01, 0.01}, {0.1, 0.1}, {0.3, 0.3}, {0.7, 0.7},
-      {0.2, 0.05}, {0.05, 0.2},   {0.7, 1e-3}, {1e-3, 0.5}, {0.3, 0.7}};
+  static const std::vector<vec2> pairs = {{1e-3, 1e-3}, {0.01, 0.01}, {0.1, 0.1},  {0.3, 0.3},
+                                          {0.7, 0.7},   {0.2, 0.05},  {0.05, 0.2}, {0.7, 1e-3},
+                                          {1e-3, 0.5},  {0.3, 0.7}};
   return pairs;
 }
 
@@ -149,16 +149,14 @@ TEST(RossBrdf, VisibleSlopeDistributionIntegratesToOne) {
         const vec3 v = TangentDirection(zenith, azimuth);
         const double integral = IntegrateOverVisibleSlopes(
             v, slope_variance,
-            [&](const vec2& zeta) { return OceanVisibleSlopePdfE(zeta, v, slope_variance); },
-            rule);
+            [&](const vec2& zeta) { return OceanVisibleSlopePdfE(zeta, v, slope_variance); }, rule);
         const double error = std::abs(integral - 1.0);
-        EXPECT_LT(error, 1e-3) << "sigma " << sigma.x << " " << sigma.y << " theta_v "
-                               << zenith << " phi_v " << azimuth;
+        EXPECT_LT(error, 1e-3) << "sigma " << sigma.x << " " << sigma.y << " theta_v " << zenith
+                               << " phi_v " << azimuth;
         if (error > worst) {
           worst = error;
           worst_case = "sigma (" + std::to_string(sigma.x) + ", " + std::to_string(sigma.y) +
-                       ") theta_v " + std::to_string(zenith) + " phi_v " +
-                       std::to_string(azimuth);
+                       ") theta_v " + std::to_string(zenith) + " phi_v " + std::to_string(azimuth);
         }
       }
     }
@@ -179,11 +177,13 @@ TEST(RossBrdf, VisibleSlopeDistributionIntegratesToOne) {
                  std::max(v.z - v.x * zeta.x - v.y * zeta.y, 0.0);
         },
         rule);
-    const double printed = facing_integral /
-        (v.z * (1.0 + OceanSmithLambda(PrintedSmithA(v, slope_variance))));
+    const double printed =
+        facing_integral / (v.z * (1.0 + OceanSmithLambda(PrintedSmithA(v, slope_variance))));
     const double corrected = facing_integral / OceanSmithFacingAreaToward(v, slope_variance);
-    std::printf("eq. 11 at theta_v %.0f deg, sigma^2 0.1: integral %.6f with the corrected "
-                "eq. 9, %.6f with the printed one\n", zenith, corrected, printed);
+    std::printf(
+        "eq. 11 at theta_v %.0f deg, sigma^2 0.1: integral %.6f with the corrected "
+        "eq. 9, %.6f with the printed one\n",
+        zenith, corrected, printed);
     EXPECT_NEAR(corrected, 1.0, 1e-5);
     if (zenith == 45.0) {
       EXPECT_NEAR(printed, 1.0, 1e-5);
@@ -336,8 +336,8 @@ double HemisphereIntegral(const vec3& v, double lobe_scale,
     const double dalpha = lobe_scale * k * (1.0 + tangent * tangent) * dt;
     for (int j = 0; j < azimuth_steps; ++j) {
       const double psi = (j + 0.5) * dpsi;
-      const vec3 l = std::cos(alpha) * m +
-                     std::sin(alpha) * (std::cos(psi) * t1 + std::sin(psi) * t2);
+      const vec3 l =
+          std::cos(alpha) * m + std::sin(alpha) * (std::cos(psi) * t1 + std::sin(psi) * t2);
       if (l.z <= 0.0) continue;
       sum += g(l) * l.z * std::sin(alpha) * dalpha * dpsi;
     }
@@ -385,23 +385,23 @@ TEST(RossBrdf, BrdfAlbedoIsTheReflectionCountedOnTheFacets) {
       const double albedo = HemisphereIntegral(v, LobeScale(slope_variance), [&](const vec3& l) {
         return OceanRossBrdf(v, l, slope_variance, r);
       });
-      const double albedo_with_hz2 = HemisphereIntegral(
-          v, LobeScale(slope_variance), [&](const vec3& l) {
+      const double albedo_with_hz2 =
+          HemisphereIntegral(v, LobeScale(slope_variance), [&](const vec3& l) {
             return OceanRossBrdf(v, l, slope_variance, r) * normalize(v + l).z;
           });
       const double facets = FacetAlbedo(v, slope_variance, r, rule);
       const double error = RelativeDifference(albedo, facets);
       worst = std::max(worst, error);
-      std::printf("albedo sigma (%.2f, %.2f) theta_v %2.0f: light space %.6f, facets %.6f, "
-                  "with eq. 12's h_z^2 %.6f\n",
-                  sigma.x, sigma.y, zenith, albedo, facets, albedo_with_hz2);
+      std::printf(
+          "albedo sigma (%.2f, %.2f) theta_v %2.0f: light space %.6f, facets %.6f, "
+          "with eq. 12's h_z^2 %.6f\n",
+          sigma.x, sigma.y, zenith, albedo, facets, albedo_with_hz2);
       EXPECT_LT(error, 1e-3) << "sigma " << sigma.x << " " << sigma.y << " theta_v " << zenith;
       EXPECT_GT(RelativeDifference(albedo_with_hz2, facets), 5e-3);
     }
   }
   std::printf("BRDF albedo against the facet count: worst relative difference %.3g\n", worst);
 }
-
 
 TEST(RossBrdf, BrdfConservesEnergyAndTendsToFresnel) {
   // The directional albedo is at most 1 for every tested v and sigma, with R = 0.02 and with
@@ -421,8 +421,8 @@ TEST(RossBrdf, BrdfConservesEnergyAndTendsToFresnel) {
       for (double r : {OCEAN_DEFAULT_FRESNEL_R, 1.0}) {
         const double facets = FacetAlbedo(v, slope_variance, r, rule);
         EXPECT_GT(facets, 0.0);
-        EXPECT_LE(facets, 1.0) << "sigma " << sigma.x << " " << sigma.y << " theta_v "
-                               << zenith << " R " << r;
+        EXPECT_LE(facets, 1.0) << "sigma " << sigma.x << " " << sigma.y << " theta_v " << zenith
+                               << " R " << r;
         largest = std::max(largest, facets);
         if (!light_space) continue;
         const double albedo = HemisphereIntegral(
@@ -431,8 +431,8 @@ TEST(RossBrdf, BrdfConservesEnergyAndTendsToFresnel) {
         EXPECT_GT(albedo, 0.0);
         // The light-space quadrature's own error (measured up to 1e-5 for R = 1, where the
         // true albedo is 1 - O(sigma^2) at normal incidence) is allowed for.
-        EXPECT_LE(albedo, 1.0 + 2e-5) << "sigma " << sigma.x << " " << sigma.y << " theta_v "
-                                      << zenith << " R " << r;
+        EXPECT_LE(albedo, 1.0 + 2e-5)
+            << "sigma " << sigma.x << " " << sigma.y << " theta_v " << zenith << " R " << r;
         largest = std::max(largest, albedo);
       }
     }
@@ -499,8 +499,7 @@ TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
   // q_vn^e fails.
   const GaussLegendre rule = MakeGaussLegendre(6);
   const double r = OCEAN_DEFAULT_FRESNEL_R;
-  const std::vector<double> variances = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.06, 0.1, 0.16,
-                                         0.25};
+  const std::vector<double> variances = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.06, 0.1, 0.16, 0.25};
   struct Config {
     double ratio;  // sigma_y^2 / sigma_x^2
     double azimuth_deg;
@@ -545,9 +544,8 @@ TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
         if (error > worst) {
           worst = error;
           worst_signed = fit - exact;
-          worst_case = std::string(config.name) + ", sigma_v^2 " +
-                       std::to_string(variances[k]) + ", theta_v " +
-                       std::to_string(zenith_deg) + ": fit " + std::to_string(fit) +
+          worst_case = std::string(config.name) + ", sigma_v^2 " + std::to_string(variances[k]) +
+                       ", theta_v " + std::to_string(zenith_deg) + ": fit " + std::to_string(fit) +
                        ", eq. 24 " + std::to_string(exact);
         }
         sum += error;
@@ -583,9 +581,10 @@ TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
   for (size_t c = 0; c < configs.size(); ++c) {
     std::printf("| %s | %.4f |\n", configs[c].name, worst_by_config[c]);
   }
-  std::printf("\neq. 26: worst absolute error %.4f (fit - eq. 24 = %+.4f) at %s; mean %.5f over "
-              "%d points\n",
-              worst, worst_signed, worst_case.c_str(), sum / count, count);
+  std::printf(
+      "\neq. 26: worst absolute error %.4f (fit - eq. 24 = %+.4f) at %s; mean %.5f over "
+      "%d points\n",
+      worst, worst_signed, worst_case.c_str(), sum / count, count);
   EXPECT_LT(worst, kEffectiveFresnelWorstBound);
   EXPECT_LT(sum / count, kEffectiveFresnelMeanBound);
   // At sigma_v = 0 the fit is Schlick's formula, which eq. 24 becomes (q_vn^e -> Dirac).
@@ -660,10 +659,10 @@ TEST(RossBrdf, SkyMapDerivativesMatchFiniteDifferences) {
           const double error_x = length(du_x - fd_x) / length(du_x);
           const double error_y = length(du_y - fd_y) / length(du_y);
           worst = std::max({worst, error_x, error_y});
-          EXPECT_LT(error_x, 1e-6) << "tilt " << tilt << " wind " << wind << " theta_v "
-                                   << zenith << " phi_v " << azimuth;
-          EXPECT_LT(error_y, 1e-6) << "tilt " << tilt << " wind " << wind << " theta_v "
-                                   << zenith << " phi_v " << azimuth;
+          EXPECT_LT(error_x, 1e-6) << "tilt " << tilt << " wind " << wind << " theta_v " << zenith
+                                   << " phi_v " << azimuth;
+          EXPECT_LT(error_y, 1e-6) << "tilt " << tilt << " wind " << wind << " theta_v " << zenith
+                                   << " phi_v " << azimuth;
         }
       }
     }
@@ -719,11 +718,10 @@ TEST(RossBrdf, ReflectedSunConservesTheFresnelWeightedFluxAsSigmaVanishes) {
       const vec2 slope_variance(variance, 0.3 * variance);
       // Clamped: the same values as at the clamp itself.
       EXPECT_EQ(OceanReflectedSun(vec3(-l.x, -l.y, l.z), l, slope_variance, r),
-                OceanReflectedSun(vec3(-l.x, -l.y, l.z), l,
-                                  vec2(OCEAN_SUN_MIN_SLOPE_VARIANCE), r));
-      const double flux = HemisphereIntegral(l, sun_lobe, [&](const vec3& v) {
-        return OceanReflectedSun(v, l, slope_variance, r);
-      }, 400, 128);
+                OceanReflectedSun(vec3(-l.x, -l.y, l.z), l, vec2(OCEAN_SUN_MIN_SLOPE_VARIANCE), r));
+      const double flux = HemisphereIntegral(
+          l, sun_lobe, [&](const vec3& v) { return OceanReflectedSun(v, l, slope_variance, r); },
+          400, 128);
       const double error = std::abs(flux / (l.z * fresnel) - 1.0);
       worst = std::max(worst, error);
       EXPECT_LT(error, 1e-4) << "theta_l " << zenith << " sigma^2 " << variance;
@@ -733,9 +731,8 @@ TEST(RossBrdf, ReflectedSunConservesTheFresnelWeightedFluxAsSigmaVanishes) {
   // The unclamped BRDF at sigma^2 = 1e-8 per axis is finite and conserves energy too.
   const vec3 v = TangentDirection(40.0, 10.0);
   const vec2 tiny(1e-8, 1e-8);
-  const double albedo = HemisphereIntegral(v, LobeScale(tiny), [&](const vec3& l) {
-    return OceanRossBrdf(v, l, tiny, r);
-  }, 400, 128);
+  const double albedo = HemisphereIntegral(
+      v, LobeScale(tiny), [&](const vec3& l) { return OceanRossBrdf(v, l, tiny, r); }, 400, 128);
   EXPECT_NEAR(albedo / OceanSchlickFresnel(v.z, r), 1.0, 1e-4);
 }
 
@@ -765,8 +762,8 @@ TEST(RossBrdf, FiniteForExtremeInputs) {
             const double q = OceanVisibleSlopePdf(zeta_h, v, l, slope_variance);
             const double q0 = OceanVisibleSlopePdf(vec2(0.0), v, l, slope_variance);
             ASSERT_TRUE(IsFinite(brdf) && brdf >= 0.0)
-                << "sigma^2 " << sx2 << " " << sy2 << " v " << zenith_v << " " << azimuth_v
-                << " l " << l.x << " " << l.y << " " << l.z << ": " << brdf;
+                << "sigma^2 " << sx2 << " " << sy2 << " v " << zenith_v << " " << azimuth_v << " l "
+                << l.x << " " << l.y << " " << l.z << ": " << brdf;
             ASSERT_TRUE(IsFinite(sun) && sun >= 0.0) << sun;
             ASSERT_TRUE(IsFinite(zeta_h));
             ASSERT_TRUE(IsFinite(q) && q >= 0.0) << q;
@@ -801,10 +798,12 @@ TEST(RossBrdf, FiniteForExtremeInputs) {
   }
   std::printf("extreme inputs: %d (v, l, sigma) combinations finite\n", checked);
   // The light at or below the horizon shadows every facet; a view below the surface sees none.
-  EXPECT_EQ(OceanReflectedSun(TangentDirection(30.0, 0.0), TangentDirection(90.0, 180.0),
-                              vec2(0.01), r), 0.0);
-  EXPECT_EQ(OceanRossBrdf(TangentDirection(95.0, 0.0), TangentDirection(30.0, 180.0),
-                          vec2(0.01), r), 0.0);
+  EXPECT_EQ(
+      OceanReflectedSun(TangentDirection(30.0, 0.0), TangentDirection(90.0, 180.0), vec2(0.01), r),
+      0.0);
+  EXPECT_EQ(
+      OceanRossBrdf(TangentDirection(95.0, 0.0), TangentDirection(30.0, 180.0), vec2(0.01), r),
+      0.0);
   // A horizontal view toward the glint of a low sun is finite and positive without any clamp.
   const double grazing = OceanReflectedSun(TangentDirection(90.0, 180.0),
                                            TangentDirection(85.0, 0.0), vec2(0.02, 0.01), r);
@@ -820,8 +819,7 @@ TEST(RossBrdf, SlopeVarianceTowardAndWeights) {
     const vec3 v = TangentDirection(50.0, azimuth);
     const double phi = std::atan2(v.y, v.x);
     EXPECT_NEAR(OceanSlopeVarianceToward(v, slope_variance),
-                0.04 * std::cos(phi) * std::cos(phi) + 0.01 * std::sin(phi) * std::sin(phi),
-                1e-16);
+                0.04 * std::cos(phi) * std::cos(phi) + 0.01 * std::sin(phi) * std::sin(phi), 1e-16);
   }
   EXPECT_DOUBLE_EQ(OceanSlopeVarianceToward(vec3(0.0, 0.0, 1.0), slope_variance), 0.025);
   // The weights of sec. 3.2: 0 below a, 1 above b, 3 x^2 - 2 x^3 between, 1/2 at the middle.

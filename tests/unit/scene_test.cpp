@@ -256,8 +256,8 @@ TEST(SceneFile, MergedJsonIsSortedCompleteAndRoundTrips) {
 
 TEST(SceneSet, NumbersBareAndQuotedStrings) {
   const Scene s = with_sets({"camera.height=20000", "image.width=64", "ocean.spectrum=omega-2",
-                             "planet.shape=\"sphere\"", "sky.exr=/data/sky map.exr",
-                             "sun.zenith=0", "time=1e12", "ocean.lambda_min=1e-3"});
+                             "planet.shape=\"sphere\"", "sky.exr=/data/sky map.exr", "sun.zenith=0",
+                             "time=1e12", "ocean.lambda_min=1e-3"});
   EXPECT_EQ(s.camera.height, 20000.0);
   EXPECT_EQ(s.image.width, 64);
   EXPECT_EQ(s.ocean.spectrum, WaveSpectrum::OmegaMinus2);
@@ -358,8 +358,9 @@ TEST(SceneErrors, MalformedJsonGivesLineAndColumn) {
 }
 
 TEST(SceneErrors, TopLevelAndSectionMustBeObjects) {
-  EXPECT_HAS(text_error("[1, 2]"), "s.json: expected a JSON object of sections at the top level, "
-                                   "got an array");
+  EXPECT_HAS(text_error("[1, 2]"),
+             "s.json: expected a JSON object of sections at the top level, "
+             "got an array");
   EXPECT_HAS(text_error("{\"camera\": 5}"), "s.json: camera: expected an object");
   EXPECT_HAS(text_error("{\"camera\": [1]}"), "got an array");
 }
@@ -368,10 +369,12 @@ TEST(SceneErrors, UnknownKeysSuggestTheClosest) {
   EXPECT_HAS(text_error(R"({"camera": {"hieght": 5}})"),
              "s.json: camera.hieght: expected a known key (did you mean camera.height?), got an "
              "unknown key");
-  EXPECT_HAS(text_error(R"({"camra": {"height": 5}})"), "s.json: camra: expected a known key "
-                                                         "(did you mean camera?)");
-  EXPECT_HAS(text_error(R"({"wind_speed": 5})"), "s.json: wind_speed: expected a known key (did "
-                                                 "you mean ocean.wind_speed?)");
+  EXPECT_HAS(text_error(R"({"camra": {"height": 5}})"),
+             "s.json: camra: expected a known key "
+             "(did you mean camera?)");
+  EXPECT_HAS(text_error(R"({"wind_speed": 5})"),
+             "s.json: wind_speed: expected a known key (did "
+             "you mean ocean.wind_speed?)");
   EXPECT_HAS(text_error(R"({"ocean": {"fetch": 5}})"), "s.json: ocean.fetch: expected a known key");
   EXPECT_HAS(text_error(R"({"camera.height": 5})"),
              "s.json: camera.height: expected the key inside its section, {\"camera\": "
@@ -421,8 +424,9 @@ TEST(SceneErrors, OutOfRange) {
              "ocean.seed: expected an integer in [0, 4294967295], got -1");
   EXPECT_HAS(text_error(R"({"ocean": {"seed": 4294967296}})"), "got 4294967296");
   EXPECT_HAS(text_error(R"({"ocean": {"seed": 18446744073709551615}})"), "ocean.seed");
-  EXPECT_HAS(text_error(R"({"camera": {"fov_y": 0}})"), "camera.fov_y: expected a number in "
-                                                         "[0.01, 179] (degrees)");
+  EXPECT_HAS(text_error(R"({"camera": {"fov_y": 0}})"),
+             "camera.fov_y: expected a number in "
+             "[0.01, 179] (degrees)");
   EXPECT_HAS(text_error(R"({"planet": {"radius": 6371000000}})"), "planet.radius");
   // The bounds themselves are valid.
   SceneBuilder b;
@@ -446,8 +450,9 @@ TEST(SceneErrors, LambdaMinAboveLambdaMax) {
   SceneBuilder b;
   b.load_text(R"({"ocean": {"lambda_min": 5}})", "s.json");
   b.set("ocean.lambda_max=1");
-  EXPECT_HAS(error_of([&] { b.build(); }), "--set: ocean.lambda_min: expected a value <= "
-                                            "ocean.lambda_max (1 m), got 5");
+  EXPECT_HAS(error_of([&] { b.build(); }),
+             "--set: ocean.lambda_min: expected a value <= "
+             "ocean.lambda_max (1 m), got 5");
   SceneBuilder equal;
   equal.set("ocean.lambda_min=30");
   EXPECT_EQ(equal.build().ocean.lambda_min, 30.0);
@@ -498,8 +503,8 @@ TEST(SceneErrors, UtcExcludesZenithAndAzimuth) {
 
 struct SunCase {
   const char* utc;
-  double lat, lon;          // degrees
-  double zenith, azimuth;   // degrees, reference
+  double lat, lon;         // degrees
+  double zenith, azimuth;  // degrees, reference
 };
 
 Scene sun_at(const std::string& utc, double lat, double lon) {
@@ -618,19 +623,20 @@ TEST(SolarPosition, FiniteAtPolesAndAllHours) {
 
 TEST(SceneKeys, ListsEveryKeyOnce) {
   const std::set<std::string> expected = {
-      "image.width",       "image.height",         "image.exposure",  "image.exr_type",
-      "camera.lat",        "camera.lon",           "camera.height",   "camera.heading",
-      "camera.pitch",      "camera.roll",          "camera.fov_y",    "sun.zenith",
-      "sun.azimuth",       "sun.utc",              "time",            "planet.shape",
-      "planet.radius",     "ocean.wind_speed",     "ocean.wind_direction", "ocean.spectrum",
-      "ocean.waves",       "ocean.lambda_min",     "ocean.lambda_max", "ocean.seed",
-      "ocean.n_min",       "ocean.n_max",          "ocean.grid_cell", "ocean.fresnel_r",
-      "sky.model",         "sky.exr"};
+      "image.width",          "image.height",     "image.exposure",
+      "image.exr_type",       "camera.lat",       "camera.lon",
+      "camera.height",        "camera.heading",   "camera.pitch",
+      "camera.roll",          "camera.fov_y",     "sun.zenith",
+      "sun.azimuth",          "sun.utc",          "time",
+      "planet.shape",         "planet.radius",    "ocean.wind_speed",
+      "ocean.wind_direction", "ocean.spectrum",   "ocean.waves",
+      "ocean.lambda_min",     "ocean.lambda_max", "ocean.seed",
+      "ocean.n_min",          "ocean.n_max",      "ocean.grid_cell",
+      "ocean.fresnel_r",      "sky.model",        "sky.exr"};
   std::set<std::string> seen;
   for (const auto& k : scene_keys()) {
     EXPECT_TRUE(seen.insert(k.path).second) << "duplicate " << k.path;
-    EXPECT_TRUE(k.type == "number" || k.type == "integer" || k.type == "string" ||
-                k.type == "enum")
+    EXPECT_TRUE(k.type == "number" || k.type == "integer" || k.type == "string" || k.type == "enum")
         << k.path;
     EXPECT_FALSE(k.range.empty()) << k.path;
     EXPECT_FALSE(k.doc.empty()) << k.path;

@@ -126,8 +126,8 @@ std::vector<Geometry> geometries(const std::vector<double>& view_angles_deg, int
       const Vec3 n = normalize({gauss(rng), gauss(rng), gauss(rng)});
       const Frame f = frame_about(n);
       const double th = angle * kDegree, ph = u(rng);
-      out.push_back(
-          {n, f.to_world({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph), std::cos(th)})});
+      out.push_back({n, f.to_world({std::sin(th) * std::cos(ph), std::sin(th) * std::sin(ph),
+                                    std::cos(th)})});
     }
   }
   return out;
@@ -136,8 +136,7 @@ std::vector<Geometry> geometries(const std::vector<double>& view_angles_deg, int
 // Brute-force eq. 1 for a cosine-weighted BRDF: ∫_{N.L > 0} L(omega) brdf(V_t, L_t) d omega, in
 // the tangent frame about N.
 double brute_force_radiance(const std::vector<double>& lighting, int lighting_order,
-                            const CosineWeightedBrdf& brdf, const Geometry& g, int n_t,
-                            int n_phi) {
+                            const CosineWeightedBrdf& brdf, const Geometry& g, int n_t, int n_phi) {
   const Frame frame = frame_about(g.normal);
   const Vec3 v_t = frame.to_local(g.view);
   return integrate_hemisphere(g.normal, n_t, n_phi, [&](const Vec3& w) {
@@ -152,8 +151,7 @@ CosineWeightedBrdf ross_brdf(double total_slope_variance) {
     if (l[2] <= 0.0) return 0.0;
     const glm::dvec3 view(v[0], v[1], v[2]), light(l[0], l[1], l[2]);
     const double half = 0.5 * total_slope_variance;
-    return thalassa::glsl::OceanRossBrdf(view, light, glm::dvec2(half, half), kRossFresnelR) *
-           l[2];
+    return thalassa::glsl::OceanRossBrdf(view, light, glm::dvec2(half, half), kRossFresnelR) * l[2];
   };
 }
 
@@ -181,10 +179,11 @@ TEST(ShBrdf, PhongCoefficientsMatchExactResponseAndPaperApproximation) {
       }
       max_ll1 = std::max(max_ll1, std::abs(response - std::exp(-l * (l + 1.0) / (2.0 * s))));
     }
-    std::printf("[measured] Phong s = %3.0f, l <= %3d: |A_l - exact| <= %.1e; "
-                "|A_l - exp(-l^2/2s)| <= %.4f (at l = %d; sqrt(s) x = %.3f); "
-                "|A_l - exp(-l(l+1)/2s)| <= %.4f\n",
-                s, order, max_exact, max_paper, worst_l, max_paper * std::sqrt(s), max_ll1);
+    std::printf(
+        "[measured] Phong s = %3.0f, l <= %3d: |A_l - exact| <= %.1e; "
+        "|A_l - exp(-l^2/2s)| <= %.4f (at l = %d; sqrt(s) x = %.3f); "
+        "|A_l - exp(-l(l+1)/2s)| <= %.4f\n",
+        s, order, max_exact, max_paper, worst_l, max_paper * std::sqrt(s), max_ll1);
     EXPECT_LT(max_exact, 1e-12) << "s = " << s;
     // The paper's approximation is an approximation: the recurrence gives
     // A_l ≈ exp(-l (l + 1) / 2s), so with l = x sqrt(s) the difference from exp(-l^2 / 2s) is
@@ -204,11 +203,13 @@ TEST(ShBrdf, ConvolutionTheoremPhongMatchesBruteForce) {
   constexpr int kBrdfOrder = 30;  // > lighting order: F_B = min = 8, so B is exact
   const std::vector<double> lighting = random_lighting(kLightingOrder, 1e9, kSeed);
   // P = 2 to check that a radially symmetric BRDF has no view dependence (rho_lpq = 0, p > 0).
-  const BrdfCoefficients rho = project_brdf(phong_brdf(kExponent), BrdfGrid{64, 8, 8}, kBrdfOrder, 2);
+  const BrdfCoefficients rho =
+      project_brdf(phong_brdf(kExponent), BrdfGrid{64, 8, 8}, kBrdfOrder, 2);
   double max_view = 0.0;
   for (int l = 0; l <= kBrdfOrder; ++l) {
     for (int p = 1; p <= 2; ++p) {
-      for (int q = 0; q <= std::min(l, p); ++q) max_view = std::max(max_view, std::abs(rho(l, p, q)));
+      for (int q = 0; q <= std::min(l, p); ++q)
+        max_view = std::max(max_view, std::abs(rho(l, p, q)));
     }
   }
   EXPECT_LT(max_view, 1e-13);
@@ -227,9 +228,10 @@ TEST(ShBrdf, ConvolutionTheoremPhongMatchesBruteForce) {
     max_error = std::max(max_error, std::abs(shrm - brute));
     max_value = std::max(max_value, std::abs(brute));
   }
-  std::printf("[measured] convolution theorem, Phong s = 32, L of order 8: max |SHRM - brute| = "
-              "%.1e (radiance up to %.2f); max |rho_lpq|, p > 0 = %.1e\n",
-              max_error, max_value, max_view);
+  std::printf(
+      "[measured] convolution theorem, Phong s = 32, L of order 8: max |SHRM - brute| = "
+      "%.1e (radiance up to %.2f); max |rho_lpq|, p > 0 = %.1e\n",
+      max_error, max_value, max_view);
   // Both sides are exact to rounding (band-limited lighting, Gauss quadratures exact for the
   // degree): 1e-11 leaves a margin over the ~1e-13 measured.
   EXPECT_LT(max_error, 1e-11);
@@ -270,9 +272,10 @@ TEST(ShBrdf, ShrmMapsMatchPerDirectionEvaluation) {
           max_dynamic, std::abs(dynamic[static_cast<std::size_t>(y * kWidth + x)] - expected));
     }
   }
-  std::printf("[measured] SHRM maps vs per-direction: local %.1e, global %.1e, dynamic %.1e "
-              "(coefficients up to %.2f)\n",
-              max_local, max_global, max_dynamic, scale);
+  std::printf(
+      "[measured] SHRM maps vs per-direction: local %.1e, global %.1e, dynamic %.1e "
+      "(coefficients up to %.2f)\n",
+      max_local, max_global, max_dynamic, scale);
   EXPECT_LT(max_local, 1e-12);
   EXPECT_LT(max_global, 1e-12);
   EXPECT_LT(max_dynamic, 1e-12);
@@ -315,8 +318,8 @@ std::vector<double> convergence(const CosineWeightedBrdf& brdf, const BrdfGrid& 
     const ReflectedLightField field = convolve(lighting, lighting_order, rho);
     double max_error = 0.0;
     for (std::size_t k = 0; k < geo.size(); ++k) {
-      max_error = std::max(max_error,
-                           std::abs(reflected_radiance(field, geo[k].normal, geo[k].view) - brute[k]));
+      max_error = std::max(
+          max_error, std::abs(reflected_radiance(field, geo[k].normal, geo[k].view) - brute[k]));
     }
     errors.push_back(max_error / scale);
     std::printf("[measured] %s F = %2d P = %d: max |SHRM - brute| / max brute = %.2e\n", label,
@@ -335,7 +338,7 @@ constexpr double kConvergenceLightingWidth = 4.0;
 const BrdfGrid kConvergenceGrid{96, 48, 48};
 
 TEST(ShBrdf, MicrofacetShrmConvergesToBruteForce) {
-  const std::vector<ConvergenceCase> cases = {{2, 0}, {4, 1}, {6, 2}, {8, 3},
+  const std::vector<ConvergenceCase> cases = {{2, 0},  {4, 1},  {6, 2}, {8, 3},
                                               {10, 4}, {12, 6}, {12, 8}};
   const std::vector<double> errors =
       convergence(microfacet_brdf(0.2), kConvergenceGrid, cases, kConvergenceLightingOrder,
@@ -388,9 +391,10 @@ double max_albedo_error(const CosineWeightedBrdf& brdf, int order_p, const char*
     const double shrm = reflected_radiance(field, g.normal, g.view);
     max_error = std::max(max_error, std::abs(shrm - albedo) / albedo);
   }
-  std::printf("[measured] energy %s, P = %2d: max |SHRM - albedo| / albedo over theta_v = 0, 20, "
-              "40, 60, 75 deg = %.2e\n",
-              name, order_p, max_error);
+  std::printf(
+      "[measured] energy %s, P = %2d: max |SHRM - albedo| / albedo over theta_v = 0, 20, "
+      "40, 60, 75 deg = %.2e\n",
+      name, order_p, max_error);
   return max_error;
 }
 

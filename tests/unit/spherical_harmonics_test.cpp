@@ -269,9 +269,10 @@ void check_orthonormality_separated(int order, bool all_same_m_pairs) {
     worst_pairs = std::max(worst_pairs, std::abs(gram(l, m, lp, mp)));
     ++pairs;
   }
-  std::printf("[measured] order %d: diagonal max |G - 1| = %.2e, %zu off-diagonal pairs max |G| = "
-              "%.2e\n",
-              order, worst_diagonal, pairs, worst_pairs);
+  std::printf(
+      "[measured] order %d: diagonal max |G - 1| = %.2e, %zu off-diagonal pairs max |G| = "
+      "%.2e\n",
+      order, worst_diagonal, pairs, worst_pairs);
   EXPECT_LT(worst_diagonal, 1e-10);
   EXPECT_LT(worst_pairs, 1e-10);
 }
@@ -287,7 +288,7 @@ TEST(SphericalHarmonics, OrthonormalAtOrderTwoHundred) {
 // sin θ = 1/e, where u^m underflows first relative to the size of the values it seeds.
 std::vector<double> stress_thetas() {
   const double inverse_e = std::asin(1.0 / std::exp(1.0));  // sin θ = 1/e
-  std::vector<double> thetas = {0.0,        1e-300,     1e-12,       1e-6, 1e-3,
+  std::vector<double> thetas = {0.0,        1e-300,     1e-12,       1e-6,    1e-3,
                                 0.05,       0.3,        inverse_e,   kPi / 2, kPi - inverse_e,
                                 kPi - 1e-3, kPi - 1e-9, kPi - 1e-12, kPi};
   for (int i = 1; i < 40; ++i) thetas.push_back(kPi * i / 40.0 + 0.0123);
@@ -333,9 +334,10 @@ TEST(SphericalHarmonics, LegendreBeyondTheDoubleRangeOfTheSectorals) {
   constexpr int kOrder = 3000;
   const double theta = std::asin(1.0 / std::exp(1.0));
   const double worst = worst_addition_theorem_legendre(kOrder, theta);
-  std::printf("[measured] l <= %d at sin θ = 1/e: max relative error of the addition theorem: "
-              "%.2e\n",
-              kOrder, worst);
+  std::printf(
+      "[measured] l <= %d at sin θ = 1/e: max relative error of the addition theorem: "
+      "%.2e\n",
+      kOrder, worst);
   EXPECT_LT(worst, 1e-10);
 }
 
@@ -355,9 +357,10 @@ void check_addition_theorem_y(int order, int random_directions) {
       worst = std::max(worst, std::abs(sum * 4.0 * kPi / (2.0 * l + 1.0) - 1.0));
     }
   }
-  std::printf("[measured] order %d, %zu directions: max relative error of sum_m Y_lm^2 = (2l + "
-              "1) / 4 pi: %.2e\n",
-              order, directions.size(), worst);
+  std::printf(
+      "[measured] order %d, %zu directions: max relative error of sum_m Y_lm^2 = (2l + "
+      "1) / 4 pi: %.2e\n",
+      order, directions.size(), worst);
   EXPECT_LT(worst, 1e-10);
 }
 
@@ -405,14 +408,15 @@ TEST(SphericalHarmonics, ProjectionRecoversBandLimitedCoefficients) {
   for (int l = 0; l <= kProjectionOrder; ++l)
     for (int m = -l; m <= l; ++m)
       for (int ch = 0; ch < SampledMap::kChannels; ++ch) {
-        const double expected =
-            l <= SampledMap::kOrder ? map.coefficients[index(l, m) * SampledMap::kChannels + ch]
+        const double expected = l <= SampledMap::kOrder
+                                    ? map.coefficients[index(l, m) * SampledMap::kChannels + ch]
                                     : 0.0;
         worst = std::max(worst, std::abs(c[index(l, m) * SampledMap::kChannels + ch] - expected));
       }
-  std::printf("[measured] 256 x 128 x 3 map, order-10 function projected to order 20: max "
-              "coefficient error %.2e (%.2f ms, not asserted)\n",
-              worst, ms);
+  std::printf(
+      "[measured] 256 x 128 x 3 map, order-10 function projected to order 20: max "
+      "coefficient error %.2e (%.2f ms, not asserted)\n",
+      worst, ms);
   EXPECT_LT(worst, 1e-10);
 }
 
@@ -429,9 +433,10 @@ TEST(SphericalHarmonics, TexelAreaQuadratureErrorIsSecondOrder) {
   const double h = kPi / SampledMap::kHeight;
   const double l = SampledMap::kOrder + 1;  // the highest odd frequency of sin θ P̄_lm
   const double predicted = (l * l - 1.0) * h * h / 24.0;
-  std::printf("[measured] kTexelArea, 256 x 128: max coefficient error %.2e (one-term estimate "
-              "%.2e)\n",
-              worst, predicted);
+  std::printf(
+      "[measured] kTexelArea, 256 x 128: max coefficient error %.2e (one-term estimate "
+      "%.2e)\n",
+      worst, predicted);
   EXPECT_LT(worst, predicted);
   EXPECT_GT(worst, 1e-6);  // the reason kBandLimited is the default
 
@@ -467,9 +472,9 @@ TEST(SphericalHarmonics, ProjectionOfFloatRgbaImage) {
 
 TEST(SphericalHarmonics, ReconstructLatLongMatchesPointEvaluation) {
   const SampledMap map;
-  const std::vector<double> values = reconstruct_lat_long(
-      map.coefficients, SampledMap::kOrder,
-      {SampledMap::kWidth, SampledMap::kHeight, SampledMap::kChannels, 0});
+  const std::vector<double> values =
+      reconstruct_lat_long(map.coefficients, SampledMap::kOrder,
+                           {SampledMap::kWidth, SampledMap::kHeight, SampledMap::kChannels, 0});
   const double worst = max_abs_difference(values, map.values);
   std::printf("[measured] reconstruct_lat_long vs reconstruct(direction): max difference %.2e\n",
               worst);
@@ -487,8 +492,8 @@ TEST(SphericalHarmonics, ProjectionCostIsReported) {
   const std::vector<double> c = project_lat_long(rgb, {kWidth, kHeight, 3, 0}, kOrder);
   const double ms =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  std::printf("[timing] project_lat_long %d x %d x 3, order %d: %.1f ms\n", kWidth, kHeight,
-              kOrder, ms);
+  std::printf("[timing] project_lat_long %d x %d x 3, order %d: %.1f ms\n", kWidth, kHeight, kOrder,
+              ms);
   ASSERT_EQ(c.size(), coefficient_count(kOrder) * 3);
   for (double v : c) ASSERT_TRUE(std::isfinite(v));
 }
@@ -522,9 +527,10 @@ void check_rotation_against_reprojection(int order) {
                                                    reconstruct(f, order, transpose_times(r, d))));
     }
   }
-  std::printf("[measured] rotation order %d: D f vs re-projection of f(R^T d): max coefficient "
-              "error %.2e, max pointwise error %.2e (coefficients in [-1, 1])\n",
-              order, worst_coefficient, worst_point);
+  std::printf(
+      "[measured] rotation order %d: D f vs re-projection of f(R^T d): max coefficient "
+      "error %.2e, max pointwise error %.2e (coefficients in [-1, 1])\n",
+      order, worst_coefficient, worst_point);
   EXPECT_LT(worst_coefficient, 1e-10);
   EXPECT_LT(worst_point, 1e-10);
 }
@@ -562,9 +568,10 @@ void check_rotation_group_laws(int order) {
       for (int mp = -l; mp <= l; ++mp)
         worst_identity =
             std::max(worst_identity, std::abs(identity(l, m, mp) - (m == mp ? 1.0 : 0.0)));
-  std::printf("[measured] rotation order %d: max |D(R1 R2) - D(R1) D(R2)| = %.2e, max |D D^T - "
-              "I| = %.2e, max |D(I) - I| = %.2e\n",
-              order, worst_compose, worst_orthogonal, worst_identity);
+  std::printf(
+      "[measured] rotation order %d: max |D(R1 R2) - D(R1) D(R2)| = %.2e, max |D D^T - "
+      "I| = %.2e, max |D(I) - I| = %.2e\n",
+      order, worst_compose, worst_orthogonal, worst_identity);
   EXPECT_LT(worst_compose, 1e-10);
   EXPECT_LT(worst_orthogonal, 1e-10);
   EXPECT_LT(worst_identity, 1e-14);
@@ -584,10 +591,14 @@ TEST(SphericalHarmonics, RotationAboutZMatchesClosedForm) {
           for (int mp = -l; mp <= l; ++mp) {
             const int a = std::abs(m);
             double expected = 0.0;
-            if (m == 0 && mp == 0) expected = 1.0;
-            else if (m != 0 && mp == m) expected = std::cos(a * alpha);
-            else if (m > 0 && mp == -m) expected = -std::sin(a * alpha);
-            else if (m < 0 && mp == -m) expected = std::sin(a * alpha);
+            if (m == 0 && mp == 0)
+              expected = 1.0;
+            else if (m != 0 && mp == m)
+              expected = std::cos(a * alpha);
+            else if (m > 0 && mp == -m)
+              expected = -std::sin(a * alpha);
+            else if (m < 0 && mp == -m)
+              expected = std::sin(a * alpha);
             worst = std::max(worst, std::abs(d(l, m, mp) - expected));
           }
     }

@@ -107,8 +107,10 @@ TEST(WaveSetTest, WavelengthsFormAGeometricProgressionFromLongestToShortest) {
       EXPECT_LT(Relative(set.wavelength_ratio, std::pow(1500.0, 1.0 / (n - 1))), 1e-14);
     }
     for (int i = 0; i + 1 < n; ++i) {
-      EXPECT_LT(Relative(set.waves[i].wavelength / set.waves[i + 1].wavelength,
-                         set.wavelength_ratio), 1e-12) << n << " " << i;
+      EXPECT_LT(
+          Relative(set.waves[i].wavelength / set.waves[i + 1].wavelength, set.wavelength_ratio),
+          1e-12)
+          << n << " " << i;
     }
     for (const Wave& w : set.waves) {
       EXPECT_LT(Relative(w.wavenumber, 2.0 * kPi / w.wavelength), 1e-15);
@@ -157,8 +159,10 @@ TEST(WaveSetTest, PiersonMoskowitzPeakIsAtOmega0TimesFourBetaOverFiveToTheQuarte
   }
   EXPECT_LT(std::abs(std::log(best_omega / omega_p)), set.log_omega_band);
   EXPECT_LT(std::abs(set.peak_wavelength - 2.0 * kPi * kGravity / (omega_p * omega_p)), 1e-9);
-  std::printf("PM peak for 10 m/s: omega_p = %.6f rad/s (lambda_p = %.3f m); densest of 1000 "
-              "waves at %.6f rad/s\n", omega_p, set.peak_wavelength, best_omega);
+  std::printf(
+      "PM peak for 10 m/s: omega_p = %.6f rad/s (lambda_p = %.3f m); densest of 1000 "
+      "waves at %.6f rad/s\n",
+      omega_p, set.peak_wavelength, best_omega);
 }
 
 TEST(WaveSetTest, HeightVarianceIsTheSpectrumsIntegral) {
@@ -170,9 +174,10 @@ TEST(WaveSetTest, HeightVarianceIsTheSpectrumsIntegral) {
     for (const Wave& w : set.waves) variance += 0.5 * w.amplitude * w.amplitude;
     const double expected = kPiersonMoskowitzAlpha * std::pow(wind, 4.0) /
                             (4.0 * kPiersonMoskowitzBeta * kGravity * kGravity);
-    std::printf("wind %4.1f m/s: height variance %.9g m^2, PM integral %.9g m^2 (rel %.2e), "
-                "H_s = %.3f m\n", wind, variance, expected, Relative(variance, expected),
-                4.0 * std::sqrt(variance));
+    std::printf(
+        "wind %4.1f m/s: height variance %.9g m^2, PM integral %.9g m^2 (rel %.2e), "
+        "H_s = %.3f m\n",
+        wind, variance, expected, Relative(variance, expected), 4.0 * std::sqrt(variance));
     EXPECT_LT(Relative(variance, expected), 1e-5) << wind;
   }
 }
@@ -207,8 +212,10 @@ TEST(WaveSetTest, HasselmannSpreadingIsNormalisedAndSampledExactly) {
       mean_cos += std::cos(theta) / kSamples;
       mean_theta += theta / kSamples;
     }
-    std::printf("spreading s = %6.3f: E[cos theta] = %.6f (midpoint rule in u), s / (s + 1) = "
-                "%.6f\n", s, mean_cos, s / (s + 1.0));
+    std::printf(
+        "spreading s = %6.3f: E[cos theta] = %.6f (midpoint rule in u), s / (s + 1) = "
+        "%.6f\n",
+        s, mean_cos, s / (s + 1.0));
     // (The midpoint rule in u has its own error, ~7e-5 at s = 9.77, from the steep tails of
     // theta(u); the CDF check above is the sharp one.)
     EXPECT_LT(std::abs(mean_cos - s / (s + 1.0)), 2e-4) << s;
@@ -243,9 +250,10 @@ TEST(WaveSetTest, DirectionsSpreadSymmetricallyAroundTheWind) {
   }
   const double mean_angle =
       std::atan2(glm::dot(sum, set.crosswind), glm::dot(sum, set.downwind)) * 180.0 / kPi;
-  std::printf("1000 waves, 20-300 m, 10 m/s: mean direction %.3f deg from downwind, %d of 1000 "
-              "to the left, mean resultant length %.3f\n", mean_angle, positive,
-              glm::length(sum) / 1000.0);
+  std::printf(
+      "1000 waves, 20-300 m, 10 m/s: mean direction %.3f deg from downwind, %d of 1000 "
+      "to the left, mean resultant length %.3f\n",
+      mean_angle, positive, glm::length(sum) / 1000.0);
   EXPECT_LT(std::abs(mean_angle), 3.0);
   // Binomial(1000, 1/2): standard deviation 15.8; 3.5 sigma.
   EXPECT_LT(std::abs(positive - 500), 56);
@@ -258,10 +266,11 @@ TEST(WaveSetTest, SteepnessClampIsAppliedAndReported) {
   double max_kh = 0.0;
   for (const Wave& w : defaults.waves) max_kh = std::max(max_kh, w.wavenumber * w.amplitude);
   const double bound = std::sqrt(2.0 * kPiersonMoskowitzAlpha * defaults.log_omega_band);
-  std::printf("default set: max k h = %.5f, bound sqrt(2 alpha Delta) = %.5f; total slope "
-              "variance %.5f (along %.5f, across %.5f)\n", max_kh, bound,
-              total_slope_variance(defaults).total(), total_slope_variance(defaults).along,
-              total_slope_variance(defaults).across);
+  std::printf(
+      "default set: max k h = %.5f, bound sqrt(2 alpha Delta) = %.5f; total slope "
+      "variance %.5f (along %.5f, across %.5f)\n",
+      max_kh, bound, total_slope_variance(defaults).total(), total_slope_variance(defaults).along,
+      total_slope_variance(defaults).across);
   EXPECT_LE(max_kh, bound);
   // The widest band the scene allows (n = 2, 1 mm to 10 km) stays below the clamp as well.
   const WaveSet widest = make_wave_set(Settings(60.0, 2, 1e-3, 1e4));
@@ -324,7 +333,10 @@ double TrochoidSlopeVarianceUniformInX(double a, int samples) {
     double lo = x - a, hi = x + a, theta = x;
     for (int iteration = 0; iteration < 200; ++iteration) {
       const double f = theta - a * std::sin(theta) - x;
-      if (f > 0.0) hi = theta; else lo = theta;
+      if (f > 0.0)
+        hi = theta;
+      else
+        lo = theta;
       double next = theta - f / (1.0 - a * std::cos(theta));
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       const bool done = std::abs(next - theta) <= 1e-16 * (1.0 + std::abs(x));
@@ -371,8 +383,10 @@ TEST(WaveSetTest, AppendixASlopeVarianceMatchesTheIntegralUniformInX) {
     const double root = std::sqrt(1.0 - a * a);  // 1 / root - 1 without cancellation:
     EXPECT_LT(Relative(in_s, a * a / (root * (1.0 + root))), 1e-9) << a;
   }
-  std::printf("Appendix A: worst relative difference, closed form vs integral uniform in x: "
-              "%.2e\n", worst);
+  std::printf(
+      "Appendix A: worst relative difference, closed form vs integral uniform in x: "
+      "%.2e\n",
+      worst);
   // The clamp of the steepness keeps the variance finite at and beyond the cusp.
   EXPECT_EQ(glsl::TrochoidSlopeVariance(1.0), 1.0);
   EXPECT_EQ(glsl::TrochoidSlopeVariance(2.0), 1.0);
@@ -385,17 +399,17 @@ TEST(WaveSetTest, TrochoidDerivativesMatchFiniteDifferences) {
       const double phase = w.phase;
       glm::dvec3 d_dx, d_dy;
       glsl::TrochoidDisplacementDerivatives(w.direction, w.wavenumber, w.amplitude,
-                                            glsl::TrochoidArgument(w.wave_vector, phase, x),
-                                            d_dx, d_dy);
+                                            glsl::TrochoidArgument(w.wave_vector, phase, x), d_dx,
+                                            d_dy);
       const double step = 1e-5 * w.wavelength;
       const auto t = [&](glm::dvec2 p) {
         return glsl::TrochoidDisplacement(w.direction, w.amplitude,
                                           glsl::TrochoidArgument(w.wave_vector, phase, p));
       };
-      const glm::dvec3 fd_x = (t(x + glm::dvec2(step, 0.0)) - t(x - glm::dvec2(step, 0.0))) /
-                              (2.0 * step);
-      const glm::dvec3 fd_y = (t(x + glm::dvec2(0.0, step)) - t(x - glm::dvec2(0.0, step))) /
-                              (2.0 * step);
+      const glm::dvec3 fd_x =
+          (t(x + glm::dvec2(step, 0.0)) - t(x - glm::dvec2(step, 0.0))) / (2.0 * step);
+      const glm::dvec3 fd_y =
+          (t(x + glm::dvec2(0.0, step)) - t(x - glm::dvec2(0.0, step))) / (2.0 * step);
       const double scale = w.wavenumber * w.amplitude;  // the derivatives' magnitude
       EXPECT_LT(glm::length(fd_x - d_dx), 1e-8 * scale + 1e-15);
       EXPECT_LT(glm::length(fd_y - d_dy), 1e-8 * scale + 1e-15);
@@ -415,8 +429,7 @@ TEST(WaveSetTest, WeightFunctionIsTheSmoothstepOfSection32) {
   EXPECT_EQ(wave_filter_weight(1.0, 2.5, std::numeric_limits<double>::infinity()), 1.0);
   for (double x = 1.0; x <= 2.5; x += 0.01) {
     const double t = (x - 1.0) / 1.5;
-    EXPECT_LT(std::abs(wave_filter_weight(1.0, 2.5, x) - (3.0 * t * t - 2.0 * t * t * t)),
-              1e-15);
+    EXPECT_LT(std::abs(wave_filter_weight(1.0, 2.5, x) - (3.0 * t * t - 2.0 * t * t * t)), 1e-15);
   }
 }
 
@@ -458,12 +471,13 @@ TEST(WaveSetTest, ResolvedRangeFromLogarithmsMatchesBruteForce) {
         ASSERT_EQ(fast.full, slow.full) << length << " n=" << set.waves.size();
         // The weights agree with the ranges.
         if (fast.positive > 0) {
-          EXPECT_GT(wave_filter_weight(n_min, n_max,
-                                       set.waves[fast.positive - 1].wavelength / length), 0.0);
+          EXPECT_GT(
+              wave_filter_weight(n_min, n_max, set.waves[fast.positive - 1].wavelength / length),
+              0.0);
         }
         if (fast.positive < static_cast<int>(set.waves.size())) {
-          EXPECT_EQ(wave_filter_weight(n_min, n_max,
-                                       set.waves[fast.positive].wavelength / length), 0.0);
+          EXPECT_EQ(wave_filter_weight(n_min, n_max, set.waves[fast.positive].wavelength / length),
+                    0.0);
         }
         if (fast.full > 0) {
           EXPECT_EQ(wave_filter_weight(n_min, n_max, set.waves[fast.full - 1].wavelength / length),
@@ -473,8 +487,7 @@ TEST(WaveSetTest, ResolvedRangeFromLogarithmsMatchesBruteForce) {
       }
     }
   }
-  std::printf("resolved ranges: %d (set, L, N_min, N_max) cases agree with brute force\n",
-              checked);
+  std::printf("resolved ranges: %d (set, L, N_min, N_max) cases agree with brute force\n", checked);
   const WaveSet set = make_wave_set(Settings(10.0, 60, 0.02, 30.0));
   EXPECT_THROW(resolved_wave_range(set, -1.0), std::invalid_argument);
   EXPECT_THROW(resolved_wave_range(set, std::nan("")), std::invalid_argument);
@@ -502,10 +515,10 @@ TEST(WaveSetTest, TotalMinusResolvedEqualsTheDirectSumForEverySplit) {
       const double along = total.along - prefix.along;
       const double across = total.across - prefix.across;
       if (i < n) {
-        worst = std::max({worst, Relative(tail.along, direct.along),
-                          Relative(tail.across, direct.across)});
-        worst_naive = std::max({worst_naive, Relative(along, direct.along),
-                                Relative(across, direct.across)});
+        worst = std::max(
+            {worst, Relative(tail.along, direct.along), Relative(tail.across, direct.across)});
+        worst_naive =
+            std::max({worst_naive, Relative(along, direct.along), Relative(across, direct.across)});
         EXPECT_LT(Relative(tail.along, direct.along), 1e-12) << i;
         EXPECT_LT(Relative(tail.across, direct.across), 1e-12) << i;
       } else {
@@ -518,8 +531,10 @@ TEST(WaveSetTest, TotalMinusResolvedEqualsTheDirectSumForEverySplit) {
         prefix.across += term.across;
       }
     }
-    std::printf("n = %4d: total - resolved (tail sums) vs direct sums, worst relative %.2e; "
-                "naive double subtraction %.2e\n", n, worst, worst_naive);
+    std::printf(
+        "n = %4d: total - resolved (tail sums) vs direct sums, worst relative %.2e; "
+        "naive double subtraction %.2e\n",
+        n, worst, worst_naive);
   }
 }
 
@@ -540,8 +555,8 @@ TEST(WaveSetTest, UnresolvedSlopeVarianceIsEquationFourWithOneMinusWn) {
       EXPECT_EQ(fast.total(), 0.0) << pixel;
       continue;
     }
-    worst = std::max({worst, Relative(fast.along, direct.along),
-                      Relative(fast.across, direct.across)});
+    worst =
+        std::max({worst, Relative(fast.along, direct.along), Relative(fast.across, direct.across)});
     EXPECT_LT(Relative(fast.along, direct.along), 1e-12) << pixel;
     EXPECT_LT(Relative(fast.across, direct.across), 1e-12) << pixel;
   }
@@ -591,10 +606,11 @@ TEST(WaveSetTest, SlopeVariancesOfManyTrochoidsMatchTheSampledSurface) {
   }
   along /= weight_sum;
   across /= weight_sum;
-  std::printf("200 trochoids: eq. 4 along %.6f across %.6f; sampled surface along %.6f across "
-              "%.6f (rel %.3f, %.3f); mean Jacobian %.5f\n", predicted.along, predicted.across,
-              along, across, Relative(along, predicted.along),
-              Relative(across, predicted.across), weight_sum / (kGrid * kGrid));
+  std::printf(
+      "200 trochoids: eq. 4 along %.6f across %.6f; sampled surface along %.6f across "
+      "%.6f (rel %.3f, %.3f); mean Jacobian %.5f\n",
+      predicted.along, predicted.across, along, across, Relative(along, predicted.along),
+      Relative(across, predicted.across), weight_sum / (kGrid * kGrid));
   // Tolerance 5 %: (1) eq. 4 adds the waves' variances as if their slopes added, but the slope
   // of a sum of trochoids is the ratio -n_xy / n_z of sums (the Jacobian couples the waves): a
   // relative difference of the order of the total slope variance (~0.03 here); (2) sampling:
@@ -653,9 +669,11 @@ TEST(WaveSetTest, WrappedPhasesMatchAnExactEvaluationAtLongTimesAndFarFromTheOri
   if (!kHaveQuad) GTEST_SKIP() << "no quadruple-precision type for the reference";
   // The reference itself against closed cases: 2 pi n + 1 for n = 1e9 (exact in Quad).
   EXPECT_LT(std::abs(static_cast<double>(QuadModTwoPi(
-                static_cast<Quad>(1e9) * (static_cast<Quad>(6.283185307179586) +
-                                          static_cast<Quad>(2.4492935982947064e-16)) +
-                1)) - 1.0), 1e-15);
+                         static_cast<Quad>(1e9) * (static_cast<Quad>(6.283185307179586) +
+                                                   static_cast<Quad>(2.4492935982947064e-16)) +
+                         1)) -
+                     1.0),
+            1e-15);
   constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
   for (const WaveSet& set : {make_wave_set(Settings(10.0, 60, 0.02, 30.0)),
                              make_wave_set(Settings(10.0, 300, 1e-3, 1e4))}) {
@@ -668,15 +686,14 @@ TEST(WaveSetTest, WrappedPhasesMatchAnExactEvaluationAtLongTimesAndFarFromTheOri
       // evaluates it. Its own rounding, ~eps (|k_x local_x| + |k_y local_y|), is the same at
       // the origin and far away (1.3e7 rad, ~2e-9 rad, for the 1 mm wave 2 km away): the bound
       // allows for it.
-      for (glm::dvec2 local : {glm::dvec2(0.0), glm::dvec2(123.375, -45.5),
-                               glm::dvec2(-2000.25, 750.0)}) {
+      for (glm::dvec2 local :
+           {glm::dvec2(0.0), glm::dvec2(123.375, -45.5), glm::dvec2(-2000.25, 750.0)}) {
         for (const Wave& w : set.waves) {
           const double phase = wrapped_phase(w, t, x0);
           ASSERT_GE(phase, 0.0);
           ASSERT_LT(phase, 2.0 * kPi);
           const double local_term = glm::dot(w.wave_vector, local);
-          const double error =
-              AngleDifference(phase - local_term, ExactArgument(w, t, x0 + local));
+          const double error = AngleDifference(phase - local_term, ExactArgument(w, t, x0 + local));
           const double local_size =
               std::abs(w.wave_vector.x * local.x) + std::abs(w.wave_vector.y * local.y);
           EXPECT_LT(error, 1e-12 + 4.0 * kEpsilon * local_size) << t;
@@ -688,9 +705,10 @@ TEST(WaveSetTest, WrappedPhasesMatchAnExactEvaluationAtLongTimesAndFarFromTheOri
               std::max(worst_naive, AngleDifference(naive, ExactArgument(w, t, x0 + local)));
         }
       }
-      std::printf("n = %3zu, t = %.0e s, |x0| = %.0f km: wrapped phase + local term vs exact: "
-                  "%.2e rad within 130 m, %.2e rad at 2 km (naive double %.2e rad)\n",
-                  set.waves.size(), t, glm::length(x0) / 1e3, worst_near, worst_far, worst_naive);
+      std::printf(
+          "n = %3zu, t = %.0e s, |x0| = %.0f km: wrapped phase + local term vs exact: "
+          "%.2e rad within 130 m, %.2e rad at 2 km (naive double %.2e rad)\n",
+          set.waves.size(), t, glm::length(x0) / 1e3, worst_near, worst_far, worst_naive);
       EXPECT_LT(worst_near, 1e-9) << t;
     }
     // At t = 0 and the origin the wrapped phase is the wave's own phase, exactly.

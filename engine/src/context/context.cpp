@@ -26,10 +26,14 @@ class HostContext final : public GlContext {
 
 std::string_view backend_name(Backend backend) {
   switch (backend) {
-    case Backend::Egl: return "egl";
-    case Backend::OsMesa: return "osmesa";
-    case Backend::Glfw: return "glfw";
-    case Backend::Host: return "host";
+    case Backend::Egl:
+      return "egl";
+    case Backend::OsMesa:
+      return "osmesa";
+    case Backend::Glfw:
+      return "glfw";
+    case Backend::Host:
+      return "host";
   }
   return "unknown";
 }

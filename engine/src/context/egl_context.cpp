@@ -26,25 +26,39 @@ bool has_extension(const char* list, const char* name) {
 
 std::string egl_error_name(EGLint error) {
   switch (error) {
-    case EGL_SUCCESS: return "EGL_SUCCESS";
-    case EGL_NOT_INITIALIZED: return "EGL_NOT_INITIALIZED";
-    case EGL_BAD_ACCESS: return "EGL_BAD_ACCESS";
-    case EGL_BAD_ALLOC: return "EGL_BAD_ALLOC";
-    case EGL_BAD_ATTRIBUTE: return "EGL_BAD_ATTRIBUTE";
-    case EGL_BAD_CONFIG: return "EGL_BAD_CONFIG";
-    case EGL_BAD_CONTEXT: return "EGL_BAD_CONTEXT";
-    case EGL_BAD_DISPLAY: return "EGL_BAD_DISPLAY";
-    case EGL_BAD_MATCH: return "EGL_BAD_MATCH";
-    case EGL_BAD_PARAMETER: return "EGL_BAD_PARAMETER";
-    case EGL_BAD_SURFACE: return "EGL_BAD_SURFACE";
-    default: return "EGL error " + std::to_string(error);
+    case EGL_SUCCESS:
+      return "EGL_SUCCESS";
+    case EGL_NOT_INITIALIZED:
+      return "EGL_NOT_INITIALIZED";
+    case EGL_BAD_ACCESS:
+      return "EGL_BAD_ACCESS";
+    case EGL_BAD_ALLOC:
+      return "EGL_BAD_ALLOC";
+    case EGL_BAD_ATTRIBUTE:
+      return "EGL_BAD_ATTRIBUTE";
+    case EGL_BAD_CONFIG:
+      return "EGL_BAD_CONFIG";
+    case EGL_BAD_CONTEXT:
+      return "EGL_BAD_CONTEXT";
+    case EGL_BAD_DISPLAY:
+      return "EGL_BAD_DISPLAY";
+    case EGL_BAD_MATCH:
+      return "EGL_BAD_MATCH";
+    case EGL_BAD_PARAMETER:
+      return "EGL_BAD_PARAMETER";
+    case EGL_BAD_SURFACE:
+      return "EGL_BAD_SURFACE";
+    default:
+      return "EGL error " + std::to_string(error);
   }
 }
 
 class EglContext final : public GlContext {
  public:
   EglContext(EGLDisplay display, EGLContext context, EGLSurface surface, std::string description)
-      : display_(display), context_(context), surface_(surface),
+      : display_(display),
+        context_(context),
+        surface_(surface),
         description_(std::move(description)) {}
   ~EglContext() override {
     // Release only our own context: another one (a host's) may be current on this thread.
@@ -57,7 +71,9 @@ class EglContext final : public GlContext {
   }
   Backend backend() const override { return Backend::Egl; }
   std::string description() const override { return description_; }
-  GlProcAddressFn proc_address() const override { return reinterpret_cast<GlProcAddressFn>(&eglGetProcAddress); }
+  GlProcAddressFn proc_address() const override {
+    return reinterpret_cast<GlProcAddressFn>(&eglGetProcAddress);
+  }
   void make_current() override {
     if (!eglMakeCurrent(display_, surface_, surface_, context_))
       throw ContextError("egl: eglMakeCurrent failed: " + egl_error_name(eglGetError()));
@@ -93,9 +109,16 @@ std::unique_ptr<GlContext> try_display(EGLDisplay display, const std::string& pl
   // DESIGN section 7: with Mesa's surfaceless platform eglChooseConfig must set
   // EGL_SURFACE_TYPE, or it finds no config. A pbuffer-capable config also serves the fallback
   // below where surfaceless contexts are not supported.
-  const EGLint config_attribs[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT,
-                                   EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                   EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
+  const EGLint config_attribs[] = {EGL_SURFACE_TYPE,
+                                   EGL_PBUFFER_BIT,
+                                   EGL_RENDERABLE_TYPE,
+                                   EGL_OPENGL_BIT,
+                                   EGL_RED_SIZE,
+                                   8,
+                                   EGL_GREEN_SIZE,
+                                   8,
+                                   EGL_BLUE_SIZE,
+                                   8,
                                    EGL_NONE};
   EGLConfig config = nullptr;
   EGLint count = 0;
@@ -105,7 +128,8 @@ std::unique_ptr<GlContext> try_display(EGLDisplay display, const std::string& pl
     config = nullptr;  // EGL_NO_CONFIG_KHR
   }
   std::vector<EGLint> context_attribs = {
-      EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+      EGL_CONTEXT_MAJOR_VERSION,       4,
+      EGL_CONTEXT_MINOR_VERSION,       5,
       EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
   if (options.debug) {
     context_attribs.push_back(EGL_CONTEXT_OPENGL_DEBUG);
@@ -161,8 +185,8 @@ std::unique_ptr<GlContext> create_egl_context(const ContextOptions& options) {
     if (query_devices(16, devices, &device_count) && device_count > 0) {
       std::vector<EGLDeviceEXT> ordered;
       for (int i = 0; i < device_count; ++i) {
-        const char* ext = query_device_string ? query_device_string(devices[i], EGL_EXTENSIONS)
-                                              : nullptr;
+        const char* ext =
+            query_device_string ? query_device_string(devices[i], EGL_EXTENSIONS) : nullptr;
         if (has_extension(ext, "EGL_MESA_device_software"))
           ordered.push_back(devices[i]);
         else
@@ -178,13 +202,13 @@ std::unique_ptr<GlContext> create_egl_context(const ContextOptions& options) {
   }
   // 2. Mesa's surfaceless platform.
   if (get_platform_display && has_extension(client_extensions, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                              nullptr);
+    EGLDisplay display =
+        get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (auto context = try_display(display, "surfaceless platform", options, why)) return context;
   }
   // 3. Whatever the default display is.
-  if (auto context = try_display(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default display", options,
-                                 why))
+  if (auto context =
+          try_display(eglGetDisplay(EGL_DEFAULT_DISPLAY), "default display", options, why))
     return context;
   throw ContextError("egl: no OpenGL 4.5 core context: " + why);
 }

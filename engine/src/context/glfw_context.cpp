@@ -36,7 +36,9 @@ class GlfwContext final : public GlContext {
   std::string description() const override {
     return std::string("GLFW ") + glfwGetVersionString() + " window";
   }
-  GlProcAddressFn proc_address() const override { return reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress); }
+  GlProcAddressFn proc_address() const override {
+    return reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress);
+  }
   void make_current() override {
     glfwMakeContextCurrent(window_);
     use_gl_functions(proc_address(), "glfw");
@@ -80,8 +82,7 @@ std::unique_ptr<GlContext> create_glfw_context(const ContextOptions& options) {
   auto result = std::make_unique<GlfwContext>(window);
   result->make_current();
   glfwSwapInterval(0);
-  load_gl_functions(reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress), "glfw",
-                    options.debug);
+  load_gl_functions(reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress), "glfw", options.debug);
   return result;
 }
 

@@ -16,7 +16,9 @@ class OsMesaContext final : public GlContext {
   ~OsMesaContext() override { OSMesaDestroyContext(context_); }
   Backend backend() const override { return Backend::OsMesa; }
   std::string description() const override { return "OSMesa (Mesa off-screen)"; }
-  GlProcAddressFn proc_address() const override { return reinterpret_cast<GlProcAddressFn>(&OSMesaGetProcAddress); }
+  GlProcAddressFn proc_address() const override {
+    return reinterpret_cast<GlProcAddressFn>(&OSMesaGetProcAddress);
+  }
   void make_current() override {
     if (!OSMesaMakeCurrent(context_, buffer_.data(), GL_UNSIGNED_BYTE, kSize, kSize))
       throw ContextError("osmesa: OSMesaMakeCurrent failed");
@@ -34,11 +36,16 @@ class OsMesaContext final : public GlContext {
 }  // namespace
 
 std::unique_ptr<GlContext> create_osmesa_context(const ContextOptions& options) {
-  const int attribs[] = {OSMESA_FORMAT, OSMESA_RGBA,
-                         OSMESA_DEPTH_BITS, 0,
-                         OSMESA_PROFILE, OSMESA_CORE_PROFILE,
-                         OSMESA_CONTEXT_MAJOR_VERSION, 4,
-                         OSMESA_CONTEXT_MINOR_VERSION, 5,
+  const int attribs[] = {OSMESA_FORMAT,
+                         OSMESA_RGBA,
+                         OSMESA_DEPTH_BITS,
+                         0,
+                         OSMESA_PROFILE,
+                         OSMESA_CORE_PROFILE,
+                         OSMESA_CONTEXT_MAJOR_VERSION,
+                         4,
+                         OSMESA_CONTEXT_MINOR_VERSION,
+                         5,
                          0};
   OSMesaContext context = OSMesaCreateContextAttribs(attribs, nullptr);
   if (context == nullptr) throw ContextError("osmesa: no OpenGL 4.5 core context");

@@ -158,7 +158,8 @@ class BrdfTable {
  private:
   std::size_t offset(int i, int j, int k) const {
     return (static_cast<std::size_t>(i) * static_cast<std::size_t>(grid_.theta_o_count) +
-            static_cast<std::size_t>(j)) * static_cast<std::size_t>(grid_.phi_count) +
+            static_cast<std::size_t>(j)) *
+               static_cast<std::size_t>(grid_.phi_count) +
            static_cast<std::size_t>(k);
   }
   BrdfGrid grid_;
@@ -236,8 +237,7 @@ Mat3 reflection_frame(const Vec3& c);
 // B_pq(C), toolkit index(p, q). Cost O(F^3) (one Rotation) + O(F^2 P^2).
 std::vector<double> local_shrm(const ReflectedLightField& field, const Vec3& reflection);
 // The global SHRM at C from its local SHRM (eq. 8): B~_p = D^p(R_C) B_p. Cost O(P^3).
-std::vector<double> global_shrm(std::span<const double> local, int order_p,
-                                const Vec3& reflection);
+std::vector<double> global_shrm(std::span<const double> local, int order_p, const Vec3& reflection);
 // sum_pq coefficients[index(p, q)] Y_pq(direction): eq. 6 with a local omega_o (local SHRM) or
 // eq. 7 / 12 with a global view V (global SHRM).
 double evaluate_shrm(std::span<const double> coefficients, int order_p, const Vec3& direction);

@@ -33,25 +33,25 @@ enum class PlanetShape { Wgs84, Sphere };
 enum class WaveSpectrum { PiersonMoskowitz, OmegaMinus2 };
 
 struct ImageSettings {
-  int width = 960;                         // pixels, [1, 8192]
-  int height = 540;                        // pixels, [1, 8192]
-  double exposure = 10.0;                  // 1 / (W m^-2 sr^-1 nm^-1), (0, 1e6]; docs/scene.md
+  int width = 960;                             // pixels, [1, 8192]
+  int height = 540;                            // pixels, [1, 8192]
+  double exposure = 10.0;                      // 1 / (W m^-2 sr^-1 nm^-1), (0, 1e6]; docs/scene.md
   ExrPixelType exr_type = ExrPixelType::Half;  // "half" or "float"
 };
 
 struct CameraSettings {
-  double lat = 20.0;        // geodetic latitude, degrees, [-90, 90]
-  double lon = -150.0;      // longitude, degrees, [-180, 180]
-  double height = 4.0;      // metres above the ellipsoid (sea level), [-11000, 1e9]
-  double heading = 180.0;   // degrees clockwise from north, [-360, 360]
-  double pitch = -5.0;      // degrees above the horizontal, [-90, 90]
-  double roll = 0.0;        // degrees, [-180, 180]
-  double fov_y = 45.0;      // vertical field of view, degrees, [0.01, 179]
+  double lat = 20.0;       // geodetic latitude, degrees, [-90, 90]
+  double lon = -150.0;     // longitude, degrees, [-180, 180]
+  double height = 4.0;     // metres above the ellipsoid (sea level), [-11000, 1e9]
+  double heading = 180.0;  // degrees clockwise from north, [-360, 360]
+  double pitch = -5.0;     // degrees above the horizontal, [-90, 90]
+  double roll = 0.0;       // degrees, [-180, 180]
+  double fov_y = 45.0;     // vertical field of view, degrees, [0.01, 179]
 };
 
 struct SunSettings {
-  double zenith = 60.0;     // degrees from the zenith at the camera's nadir, [0, 180]
-  double azimuth = 180.0;   // degrees clockwise from north, [-360, 360]
+  double zenith = 60.0;    // degrees from the zenith at the camera's nadir, [0, 180]
+  double azimuth = 180.0;  // degrees clockwise from north, [-360, 360]
   // ISO 8601 UTC time ("2026-06-21T18:30:00Z"). When present in the input, zenith and azimuth
   // are computed from it for the camera's nadir and the file must not also give them.
   std::optional<std::string> utc;
@@ -63,17 +63,17 @@ struct PlanetSettings {
 };
 
 struct OceanSettings {
-  double wind_speed = 10.0;      // m/s at 19.5 m above the sea, [0, 60]
-  double wind_direction = 180.0; // degrees clockwise from north the wind blows FROM, [-360, 360]
+  double wind_speed = 10.0;       // m/s at 19.5 m above the sea, [0, 60]
+  double wind_direction = 180.0;  // degrees clockwise from north the wind blows FROM, [-360, 360]
   WaveSpectrum spectrum = WaveSpectrum::PiersonMoskowitz;  // "pierson-moskowitz" or "omega-2"
-  int waves = 60;                // number of trochoids, [1, 4096]
-  double lambda_min = 0.02;      // shortest wavelength, m, [1e-3, 1e4], <= lambda_max
-  double lambda_max = 30.0;      // longest wavelength, m, [1e-3, 1e4]
-  std::uint32_t seed = 1;        // random seed for directions and phases, [0, 4294967295]
-  double n_min = 1.0;            // N_min of the filter weights w (paper sec. 3.2), [0, 100], < n_max
-  double n_max = 2.5;            // N_max, [0, 100]
-  double grid_cell = 8.0;        // projected grid cell, pixels, [1, 64]
-  double fresnel_r = 0.02;       // Fresnel reflectance at normal incidence (eq. 14), [0, 1]
+  int waves = 60;                                          // number of trochoids, [1, 4096]
+  double lambda_min = 0.02;  // shortest wavelength, m, [1e-3, 1e4], <= lambda_max
+  double lambda_max = 30.0;  // longest wavelength, m, [1e-3, 1e4]
+  std::uint32_t seed = 1;    // random seed for directions and phases, [0, 4294967295]
+  double n_min = 1.0;        // N_min of the filter weights w (paper sec. 3.2), [0, 100], < n_max
+  double n_max = 2.5;        // N_max, [0, 100]
+  double grid_cell = 8.0;    // projected grid cell, pixels, [1, 64]
+  double fresnel_r = 0.02;   // Fresnel reflectance at normal incidence (eq. 14), [0, 1]
 };
 
 struct SkySettings {
@@ -133,12 +133,12 @@ std::string_view default_scene_json();
 // One documented scene key: used to validate, to generate docs/scene.md and to test that the
 // documentation lists every key.
 struct SceneKeyInfo {
-  std::string path;         // "camera.height"
-  std::string type;         // "number", "integer", "string", "enum"
-  std::string unit;         // "m", "degrees", "" ...
-  std::string range;        // human-readable valid range, e.g. "[-11000, 1e9]" or "half, float"
-  std::string default_value;// canonical JSON text ("4.0", "\"half\""); "(none)" if no default
-  std::string doc;          // one sentence
+  std::string path;           // "camera.height"
+  std::string type;           // "number", "integer", "string", "enum"
+  std::string unit;           // "m", "degrees", "" ...
+  std::string range;          // human-readable valid range, e.g. "[-11000, 1e9]" or "half, float"
+  std::string default_value;  // canonical JSON text ("4.0", "\"half\""); "(none)" if no default
+  std::string doc;            // one sentence
 };
 const std::vector<SceneKeyInfo>& scene_keys();
 

@@ -26,9 +26,9 @@ struct GridCamera {
   glm::dvec3 up{0, 0, 1};       // unit
   glm::dvec3 forward{0, 1, 0};  // unit
   double tan_half_fov_y = 0.41421356237309503;
-  double aspect = 1.0;   // width / height
-  double height = 4.0;   // camera height above the sea at rest, m (> 0)
-  int width = 1;         // image size in pixels
+  double aspect = 1.0;  // width / height
+  double height = 4.0;  // camera height above the sea at rest, m (> 0)
+  int width = 1;        // image size in pixels
   int height_px = 1;
 };
 
@@ -40,9 +40,9 @@ struct ProjectedGrid {
   // and along a column: eq. 2's L).
   std::vector<glm::dvec2> rest;
   std::vector<double> cell_size;
-  std::vector<glm::dvec2> image;   // the vertex's image point (u, v) in [-1, 1] (+margin)
+  std::vector<glm::dvec2> image;       // the vertex's image point (u, v) in [-1, 1] (+margin)
   std::vector<std::uint32_t> indices;  // two triangles per cell, counterclockwise in the image
-  int moved_to_horizon = 0;  // vertices moved from the sky's side onto the horizon
+  int moved_to_horizon = 0;            // vertices moved from the sky's side onto the horizon
 };
 
 // Vertex rays are depressed at least this much below the horizon (the vertical component of

@@ -61,15 +61,15 @@ inline constexpr double kDefaultNMax = 2.5;
 //   theta = omega t - k.p + phase,
 // and its displacement [d h sin(theta), h cos(theta)] (shaders/ocean/trochoids.glsl).
 struct Wave {
-  double wavelength = 0.0;         // lambda_i, m
-  double wavenumber = 0.0;         // |k_i| = 2 pi / lambda_i, rad/m
-  double angular_frequency = 0.0;  // omega_i = sqrt(g |k_i|) (deep water), rad/s
-  double amplitude = 0.0;          // h_i, m, after the clamp k_i h_i <= max_steepness
-  double angle = 0.0;              // direction of travel in wind space, rad, [-pi, pi]
-  glm::dvec2 direction{1.0, 0.0};  // unit direction of travel, east-north-up
+  double wavelength = 0.0;           // lambda_i, m
+  double wavenumber = 0.0;           // |k_i| = 2 pi / lambda_i, rad/m
+  double angular_frequency = 0.0;    // omega_i = sqrt(g |k_i|) (deep water), rad/s
+  double amplitude = 0.0;            // h_i, m, after the clamp k_i h_i <= max_steepness
+  double angle = 0.0;                // direction of travel in wind space, rad, [-pi, pi]
+  glm::dvec2 direction{1.0, 0.0};    // unit direction of travel, east-north-up
   glm::dvec2 wave_vector{0.0, 0.0};  // k_i = |k_i| direction, rad/m, east-north-up
-  double phase = 0.0;              // phi_i, rad, [0, 2 pi): theta at t = 0, p = 0
-  bool clamped = false;            // true when the steepness clamp lowered the amplitude
+  double phase = 0.0;                // phi_i, rad, [0, 2 pi): theta at t = 0, p = 0
+  bool clamped = false;              // true when the steepness clamp lowered the amplitude
 };
 
 // Slope variances (dimensionless) along the two wind-space axes: the variances of the slope
@@ -81,18 +81,18 @@ struct SlopeVariance {
 };
 
 struct WaveSet {
-  std::vector<Wave> waves;   // i = 0 longest ... n - 1 shortest
-  double lambda_min = 0.0;   // m, wavelength of the last wave
-  double lambda_max = 0.0;   // m, wavelength of the first wave
+  std::vector<Wave> waves;  // i = 0 longest ... n - 1 shortest
+  double lambda_min = 0.0;  // m, wavelength of the last wave
+  double lambda_max = 0.0;  // m, wavelength of the first wave
   // lambda_i / lambda_{i+1} >= 1, the progression's ratio; 1 when n == 1 or lambda_min ==
   // lambda_max (all waves then share one wavelength).
   double wavelength_ratio = 1.0;
   // Width of the band of ln(omega) that each wave stands for (dimensionless), see make_wave_set.
   double log_omega_band = 0.0;
   WaveSpectrum spectrum = WaveSpectrum::PiersonMoskowitz;
-  double wind_speed = 0.0;          // m/s (the scene's, at 19.5 m), negative counts as 0
-  glm::dvec2 downwind{0.0, -1.0};   // unit, east-north-up: where the wind blows toward
-  glm::dvec2 crosswind{1.0, 0.0};   // unit, east-north-up: downwind turned 90 deg CCW
+  double wind_speed = 0.0;         // m/s (the scene's, at 19.5 m), negative counts as 0
+  glm::dvec2 downwind{0.0, -1.0};  // unit, east-north-up: where the wind blows toward
+  glm::dvec2 crosswind{1.0, 0.0};  // unit, east-north-up: downwind turned 90 deg CCW
   // Wavelength of the Pierson-Moskowitz spectrum's peak, m: 2 pi g / omega_p^2 with omega_p =
   // (4 beta / 5)^(1/4) g / V; 0 for a calm sea.
   double peak_wavelength = 0.0;
@@ -160,8 +160,7 @@ struct WaveSet {
 // by the C++ standard), u = (bits >> 11) 2^-53 in [0, 1) (not std::uniform_real_distribution,
 // whose algorithm is unspecified). Wave i draws two numbers, in order of i: its angle, then its
 // phase phi_i = 2 pi u.
-WaveSet make_wave_set(const OceanSettings& settings,
-                      double max_steepness = kMaxTrochoidSteepness);
+WaveSet make_wave_set(const OceanSettings& settings, double max_steepness = kMaxTrochoidSteepness);
 
 // Pierson-Moskowitz spectrum S(omega) (eq. 1), m^2 s, for the angular frequency omega (rad/s)
 // and the wind speed V (m/s at 19.5 m): alpha g^2 omega^-5 exp(-beta (omega_0 / omega)^4),
@@ -222,8 +221,7 @@ ResolvedRange resolved_wave_range(const WaveSet& wave_set, double length,
 // eq. 4 term with w_r = 1 - w_n. (The shader does the same: one uniform per range boundary and
 // a loop over the resolved waves.)
 SlopeVariance unresolved_slope_variance(const WaveSet& wave_set, double pixel_size,
-                                        double n_min = kDefaultNMin,
-                                        double n_max = kDefaultNMax);
+                                        double n_min = kDefaultNMin, double n_max = kDefaultNMax);
 
 // The wrapped phase of a wave for the time t (seconds) and the frame origin x0 (metres,
 // east-north-up, in the frame of the wave set):

@@ -25,15 +25,15 @@ struct RenderStats {
   std::string renderer;  // GL_RENDERER
   int width = 0;         // pixels
   int height = 0;
-  std::string mode;      // "space" or "surface"
-  int frames = 0;        // frames rendered so far
-  double frame_ms = 0;   // GPU time of a frame, median over the frames rendered
+  std::string mode;     // "space" or "surface"
+  int frames = 0;       // frames rendered so far
+  double frame_ms = 0;  // GPU time of a frame, median over the frames rendered
   // How the GPU times were taken: "gl_timestamp_query" on hardware drivers, or
   // "finish_wall_clock" on Mesa's software rasterisers, whose timestamp queries miss the
   // rasterisation (see thalassa/engine/gl/gpu_timer.hpp).
   std::string timing;
   std::vector<std::pair<std::string, double>> passes;  // pass -> GPU ms, median over frames
-  int resolved_waves = 0;  // waves summed as geometry or normals (surface mode)
+  int resolved_waves = 0;          // waves summed as geometry or normals (surface mode)
   std::vector<std::string> built;  // modules and shader features this scene caused to exist
 };
 

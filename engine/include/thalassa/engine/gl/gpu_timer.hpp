@@ -17,8 +17,8 @@
 namespace thalassa::gl {
 
 enum class TimingSource {
-  TimestampQuery,    // GL_TIMESTAMP differences
-  FinishWallClock,   // steady clock between glFinish() marks
+  TimestampQuery,   // GL_TIMESTAMP differences
+  FinishWallClock,  // steady clock between glFinish() marks
 };
 
 struct PassTime {

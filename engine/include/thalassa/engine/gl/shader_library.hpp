@@ -5,8 +5,9 @@
 // Sources are looked up, in order, in: the folders of the THALASSA_SHADER_PATH environment
 // variable (colon-separated), the folders given to the constructor, share/thalassa/shaders next
 // to the installed library, the install prefix's share/thalassa/shaders, and the source tree's
-// shaders/ (for the build tree); THALASSA_SHADER_BUILTIN_PATHS=0 leaves out the last two. `#include "path"` paths are relative to that root and are
-// expanded textually, as in C (library files carry include guards; a cycle is an error). A
+// shaders/ (for the build tree); THALASSA_SHADER_BUILTIN_PATHS=0 leaves out the last two. `#include
+// "path"` paths are relative to that root and are expanded textually, as in C (library files carry
+// include guards; a cycle is an error). A
 // `#line L F` directive before and after each inclusion makes the driver's messages point at
 // source string F, which the library maps back to the file's name.
 #pragma once
