@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "flat_sea_reference.hpp"
+#include "analytic_sky_reference.hpp"
+#include "ross_brdf_reference.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
@@ -61,7 +62,7 @@ class OceanNode final : public gl::Node {
     // reference of the very functions the shader uses.
     const glm::dvec3 irradiance = glsl::AnalyticSunHorizontalIrradiance(inputs.sun_direction) +
                                   glsl::AnalyticSkyIrradiance(inputs.sun_direction);
-    const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
+    const glm::dvec3 reflectance = glsl::OCEAN_DEFAULT_DEEP_REFLECTANCE;
     auto location = [](GLuint program, const char* name) {
       return glGetUniformLocation(program, name);
     };

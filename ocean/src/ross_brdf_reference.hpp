@@ -12,10 +12,6 @@
 
 #include "common/glsl_cpp.hpp"
 
-// ross_brdf.glsl includes ocean/smith.glsl, which flat_sea.glsl includes too; the include guards
-// make this header and flat_sea_reference.hpp work in one translation unit, in either order (both
-// put the functions in the same namespace).
-//
 // Anonymous namespace: the .glsl functions are not `inline` in C++, so each translation unit gets
 // its own internal-linkage copy (no duplicate symbols when several files of one program include
 // this header), and the ones a file does not use are not reported as unused.

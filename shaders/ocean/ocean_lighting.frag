@@ -10,7 +10,6 @@
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "atmosphere/analytic_sky.glsl"
-#include "ocean/flat_sea.glsl"
 #include "ocean/ross_brdf.glsl"
 
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
@@ -25,7 +24,7 @@ uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface, W m^
 void main() {
 #ifdef UNDERWATER
 #ifdef SEA_TERM
-  radiance = vec4(FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
+  radiance = vec4(OceanDeepRadiance(deep_reflectance, horizontal_irradiance), 1.0);
 #else
   radiance = vec4(0.0, 0.0, 0.0, 1.0);
 #endif
@@ -54,7 +53,7 @@ void main() {
   sea += fresnel * AnalyticSkyRadiance(mirror, sun);
 #endif
 #ifdef SEA_TERM
-  sea += (1.0 - fresnel) * FlatSeaDeepRadiance(deep_reflectance, horizontal_irradiance);
+  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.

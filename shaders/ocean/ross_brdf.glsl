@@ -43,7 +43,7 @@
 // Bruneton's published code uses the corrected form. In the tangent frame, with w a unit vector
 // and sin theta cos phi = w_x, sin theta sin phi = w_y, it needs no angle at all:
 //   a = w_z / sqrt(2 (sigma_x^2 w_x^2 + sigma_y^2 w_y^2))                       (OceanSmithAToward)
-// which for sigma_x^2 = sigma_y^2 = sigma^2 / 2 is the flat sea's isotropic cot theta / sigma.
+// which for sigma_x^2 = sigma_y^2 = sigma^2 / 2 is the isotropic cot theta / sigma.
 //
 // TYPO 2, eq. 12. The paper prints the change of variables d^2 zeta = d^2 omega_l / (4 h_z^2
 // v.h); the slides print h_z^3, which is right: a slope zeta = tan theta_h (cos phi, sin phi)
@@ -380,6 +380,23 @@ void OceanSkyMapGradients(IN(vec3) v, IN(vec3) t_x, IN(vec3) t_y, IN(vec3) n, OU
   u0 = OceanStereographic(r);
   du_dzeta_x = OceanStereographicDerivative(r, dr_x);
   du_dzeta_y = OceanStereographicDerivative(r, dr_y);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Refracted light (sec. 5.3, eq. 28): I_sea = L_sea (1 - F-bar).
+
+// A deep-water reflectance for callers without their own, dimensionless, per channel: the sea
+// colour (10, 40, 120) / 255 used in Bruneton et al.'s 2010 ocean demo, scaled by 0.1, i.e.
+// 0.4 %, 1.6 %, 4.7 %: the order of magnitude of clear open ocean, chosen by eye. Placeholder.
+const vec3 OCEAN_DEFAULT_DEEP_REFLECTANCE = vec3(10.0, 40.0, 120.0) / 255.0 * 0.1;
+
+// L_sea, the radiance reaching the surface from the water body, W m^-2 sr^-1 nm^-1: diffuse and
+// proportional to the total sun and sky irradiance, as sec. 5.3 assumes; here a Lambertian
+// upwelling of irradiance reflectance deep_reflectance (dimensionless, per channel) under the
+// downwelling irradiance horizontal_irradiance (sun + sky on a horizontal surface,
+// W m^-2 nm^-1): deep_reflectance * E / pi, so that the water darkens at dusk with the light.
+vec3 OceanDeepRadiance(IN(vec3) deep_reflectance, IN(vec3) horizontal_irradiance) {
+  return deep_reflectance * horizontal_irradiance / PI;
 }
 
 #endif  // THALASSA_OCEAN_ROSS_BRDF_GLSL

@@ -1,7 +1,6 @@
 // Smith's masking function Lambda for Gaussian slopes, and the complementary error function it
-// needs: the one implementation shared by the placeholder sea (ocean/flat_sea.glsl) and the
-// Ross et al. BRDF (ocean/ross_brdf.glsl). CPU reference: ocean/src/ross_brdf_reference.hpp
-// (and flat_sea_reference.hpp); tests: tests/unit/ross_brdf_test.cpp.
+// needs, for the Ross et al. BRDF (ocean/ross_brdf.glsl). CPU reference:
+// ocean/src/ross_brdf_reference.hpp; tests: tests/unit/ross_brdf_test.cpp.
 //
 // Smith 1967 ("Geometrical shadowing of a random rough surface", IEEE Trans. Antennas Propag.
 // 15(5), 668-671): a facet is seen from a direction w (zenith angle theta from the mean normal)

@@ -9,7 +9,6 @@
 #include <filesystem>
 
 #include "analytic_sky_reference.hpp"
-#include "flat_sea_reference.hpp"
 #include "ross_brdf_reference.hpp"
 #include "test_support.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
@@ -63,8 +62,7 @@ class ReferenceTest : public ::testing::Test {
   }
 
   // Evaluates FUNCTION over the grid; rows of the result follow the texel rows (bottom-up).
-  std::vector<float> evaluate(int function, const glm::dvec3& sun, double wind,
-                              const glm::dvec3& reflectance, const glm::dvec3& irradiance,
+  std::vector<float> evaluate(int function, const glm::dvec3& sun,
                               const glm::dvec2& slope_variance = glm::dvec2(0.0)) {
     const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
                                               .fragment = "evaluate.frag",
@@ -74,11 +72,6 @@ class ReferenceTest : public ::testing::Test {
     glUseProgram(program);
     glBindTextureUnit(0, input_.get());
     glProgramUniform3f(program, glGetUniformLocation(program, "sun_dir"), sun.x, sun.y, sun.z);
-    glProgramUniform1f(program, glGetUniformLocation(program, "wind_speed"), wind);
-    glProgramUniform3f(program, glGetUniformLocation(program, "deep_reflectance"), reflectance.x,
-                       reflectance.y, reflectance.z);
-    glProgramUniform3f(program, glGetUniformLocation(program, "horizontal_irradiance"),
-                       irradiance.x, irradiance.y, irradiance.z);
     glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"), slope_variance.x,
                        slope_variance.y);
     glBindVertexArray(vao_.get());
@@ -143,41 +136,11 @@ glm::dvec3 sun_at(double zenith_deg) {
 TEST_F(ReferenceTest, AnalyticSkyMatchesDoubleReference) {
   for (double zenith : kSunZeniths) {
     const glm::dvec3 sun = sun_at(zenith);
-    const auto gpu = evaluate(1, sun, 0, {}, {});
+    const auto gpu = evaluate(1, sun);
     const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
       return glm::dvec4(glsl::AnalyticSkyRadiance(v, sun), 1.0);
     });
     std::printf("sky, sun zenith %5.1f deg: worst relative error %.3g\n", zenith, worst);
-  }
-}
-
-TEST_F(ReferenceTest, FlatSeaGlintAndFresnelMatchDoubleReference) {
-  for (double zenith : kSunZeniths)
-    for (double wind : {0.0, 10.0, 40.0}) {
-      const glm::dvec3 sun = sun_at(zenith);
-      const auto gpu = evaluate(3, sun, wind, {}, {});
-      const double worst = compare(gpu, 2, [&](const glm::dvec3& v) {
-        return glm::dvec4(glsl::FlatSeaGlintFactor(v, sun, glsl::FlatSeaSlopeVariance(wind)),
-                          glsl::FlatSeaFresnel(v.z), 0.0, 1.0);
-      });
-      std::printf("glint, sun zenith %5.1f deg, wind %4.1f m/s: worst relative error %.3g\n",
-                  zenith, wind, worst);
-    }
-}
-
-TEST_F(ReferenceTest, FlatSeaRadianceMatchesDoubleReference) {
-  const glm::dvec3 reflectance = glsl::FLAT_SEA_DEFAULT_DEEP_REFLECTANCE;
-  for (double zenith : kSunZeniths) {
-    const glm::dvec3 sun = sun_at(zenith);
-    const glm::dvec3 irradiance = glm::dvec3(
-        glm::vec3(glsl::AnalyticSunHorizontalIrradiance(sun) + glsl::AnalyticSkyIrradiance(sun)));
-    const auto gpu = evaluate(4, sun, 10.0, reflectance, irradiance);
-    const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
-      return glm::dvec4(glsl::FlatSeaRadianceWithIrradiance(
-                            v, sun, 10.0, glm::dvec3(glm::vec3(reflectance)), irradiance),
-                        1.0);
-    });
-    std::printf("sea radiance, sun zenith %5.1f deg: worst relative error %.3g\n", zenith, worst);
   }
 }
 
@@ -188,7 +151,7 @@ TEST_F(ReferenceTest, RossBrdfSunFresnelAndLambdaMatchDoubleReference) {
     for (double zenith : kSunZeniths) {
       const glm::dvec3 sun = sun_at(zenith);
       const glm::dvec2 sv = glm::dvec2(glm::vec2(variance));  // as the GPU sees it
-      const auto gpu = evaluate(5, sun, 0, {}, {}, sv);
+      const auto gpu = evaluate(5, sun, sv);
       const double worst = compare(gpu, 3, [&](const glm::dvec3& v) {
         return glm::dvec4(
             glsl::OceanReflectedSun(v, sun, sv, 0.02),
@@ -243,7 +206,7 @@ class PrecisionTest : public ReferenceTest {
                                               .defines = {{"FUNCTION", std::to_string(function)}}});
     glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
                        GLint(set.waves.size()));
-    const auto gpu = evaluate(function, {0, 0, 1}, 0, {}, {});
+    const auto gpu = evaluate(function, {0, 0, 1});
     double worst = 0;
     for (std::size_t i = 0; i < local.size(); ++i) {
       glm::dvec3 p(0.0), d_dx(1, 0, 0), d_dy(0, 1, 0);

@@ -14,7 +14,6 @@
 
 #include <gtest/gtest.h>
 
-#include "flat_sea_reference.hpp"
 #include "reference_test_support.hpp"
 #include "ross_brdf_reference.hpp"
 #include "trochoids_reference.hpp"
@@ -193,20 +192,22 @@ TEST(RossBrdf, VisibleSlopeDistributionIntegratesToOne) {
   }
 }
 
-TEST(RossBrdf, AnisotropicSmithAReducesToTheFlatSeas) {
-  // The flat sea's a = cot theta / sigma (total variance sigma^2) is the anisotropic a with
-  // sigma_x^2 = sigma_y^2 = sigma^2 / 2, in every azimuth.
+TEST(RossBrdf, AnisotropicSmithAReducesToTheIsotropicForm) {
+  // For isotropic slopes of total variance sigma^2 (sigma^2 / 2 per axis) a = cot theta / sigma
+  // in every azimuth: OceanSmithA with sigma_sin = sigma sin theta.
   for (double total : {1e-6, 0.003, 0.054, 0.31}) {
     const vec2 slope_variance(0.5 * total, 0.5 * total);
     for (double zenith : {0.0, 1.0, 30.0, 60.0, 85.0, 89.9, 90.0}) {
+      const double cos_theta = std::cos(zenith * M_PI / 180.0);
+      const double sigma_sin = std::sqrt(total * (1.0 - cos_theta * cos_theta));
+      const double isotropic = OceanSmithLambda(OceanSmithA(cos_theta, sigma_sin));
       for (double azimuth : {0.0, 70.0, 250.0}) {
         const vec3 v = TangentDirection(zenith, azimuth);
-        const double flat = FlatSeaSmithLambda(v.z, total);
         const double ross = OceanSmithLambdaToward(v, slope_variance);
-        EXPECT_LE(std::abs(ross - flat), 1e-12 * flat + 1e-300)
+        EXPECT_LE(std::abs(ross - isotropic), 1e-12 * isotropic + 1e-300)
             << "sigma^2 " << total << " theta " << zenith << " phi " << azimuth;
         EXPECT_LT(RelativeDifference(OceanSmithFacingAreaToward(v, slope_variance),
-                                     FlatSeaSmithFacingArea(v.z, total)),
+                                     OceanSmithFacingArea(cos_theta, sigma_sin)),
                   1e-12);
       }
     }

@@ -3,15 +3,11 @@
 // CPU sees them: texel (x, y) holds the unit view direction (xyz) for that pixel.
 #include "common/definitions.glsl"
 #include "atmosphere/analytic_sky.glsl"
-#include "ocean/flat_sea.glsl"
 #include "ocean/ross_brdf.glsl"
 #include "ocean/trochoids.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
-uniform vec3 sun_dir;      // unit, east-north-up
-uniform float wind_speed;  // m/s
-uniform vec3 deep_reflectance;
-uniform vec3 horizontal_irradiance;
+uniform vec3 sun_dir;         // unit, east-north-up
 uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
 // FUNCTION 6 and 7: the wave set as the ocean node packs it (two vec4 per wave) and the local
 // position (m, relative to the frame's origin) in the input texel's xy.
@@ -25,9 +21,6 @@ void main() {
   result = vec4(AnalyticSkyRadiance(v, sun_dir), 1.0);
 #elif FUNCTION == 2
   result = vec4(AnalyticSunDiscRadiance(v, sun_dir), 1.0);
-#elif FUNCTION == 3
-  result = vec4(FlatSeaGlintFactor(v, sun_dir, FlatSeaSlopeVariance(wind_speed)),
-                FlatSeaFresnel(v.z), 0.0, 1.0);
 #elif FUNCTION == 5
   // The Ross BRDF's sun term (eq. 15), the effective Fresnel (eq. 26) and Smith's Lambda.
   result = vec4(OceanReflectedSun(v, sun_dir, slope_variance, 0.02),
@@ -55,8 +48,5 @@ void main() {
 #else
   result = vec4(normalize(cross(d_dx, d_dy)), 1.0);
 #endif
-#elif FUNCTION == 4
-  result = vec4(FlatSeaRadianceWithIrradiance(v, sun_dir, wind_speed, deep_reflectance,
-                                              horizontal_irradiance), 1.0);
 #endif
 }
