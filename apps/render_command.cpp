@@ -152,13 +152,7 @@ int run_render(const RenderArgs& args) {
     if (args.float_exr) builder.set("image.exr_type=float");
     scene = builder.build();
     merged = builder.merged_json();
-    // Skies from HDR images arrive with the environment-map provider (issue 4); until then a
-    // given sky.exr is refused before any work rather than silently replaced by the model sky.
-    if (!scene.sky.exr.empty())
-      throw SceneError(builder.source_of("sky.exr") +
-                       ": sky.exr: expected an empty value (skies from HDR images are not "
-                       "supported by this version yet), got \"" +
-                       scene.sky.exr + "\"");
+    check_drawable(scene, builder.source_of("sky.exr"));  // before any GL work
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;

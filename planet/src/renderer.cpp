@@ -65,6 +65,14 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
 
 }  // namespace
 
+void check_drawable(const Scene& scene, const std::string& source) {
+  if (!scene.sky.exr.empty())
+    throw SceneError(source +
+                     ": sky.exr: expected an empty value (skies from HDR images are not "
+                     "supported by this version yet), got \"" +
+                     scene.sky.exr + "\"");
+}
+
 struct Renderer::Impl {
   GlContext& context;
   Scene scene;
@@ -91,12 +99,7 @@ struct Renderer::Impl {
         target(scene_.image.width, scene_.image.height),
         info(query_gl_info()),
         timer(gl::GpuTimer::source_for_renderer(info.renderer)) {
-    // A user's sky photograph must not be silently replaced by the model sky.
-    if (!scene.sky.exr.empty())
-      throw SceneError(
-          "sky.exr: expected an empty value (skies from HDR images come with the "
-          "environment-map provider, not yet in this version), got \"" +
-          scene.sky.exr + "\"");
+    check_drawable(scene);
     if (!info.missing.empty()) {
       std::string missing;
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;

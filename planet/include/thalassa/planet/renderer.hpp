@@ -50,6 +50,13 @@ struct RendererOptions {
   LightTerms terms;
 };
 
+// Throws SceneError for a valid scene that this version cannot draw yet (a non-empty sky.exr:
+// skies from HDR images arrive with the environment-map provider), rather than drawing
+// something else silently. `source` names where sky.exr came from in the message (a file,
+// "--set"; SceneBuilder::source_of). The Renderer checks it too; a program calls it first to
+// refuse before any GL work.
+void check_drawable(const Scene& scene, const std::string& source = "scene");
+
 class Renderer {
  public:
   // `context` must be current and stay alive as long as the Renderer. Throws SceneError for a
