@@ -100,7 +100,10 @@ class OceanNode final : public gl::Node {
     glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 1, zero);
     glUseProgram(geometry);
-    draw_grid(inputs);
+    const GridCamera camera =
+        make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
+                         inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height);
+    draw_grid(camera);
     context.timer.end_pass("ocean.geometry");
 
     // Pass 2, lighting (sec. 7.3's second part), into the HDR target where the grid drew.
@@ -110,7 +113,7 @@ class OceanNode final : public gl::Node {
     glBindTextureUnit(1, variance_texture_.get());
     gl::draw_fullscreen_pass();
     context.timer.end_pass("ocean.lighting");
-    resolved_waves_ = count_resolved(inputs);
+    resolved_waves_ = count_resolved(camera);
   }
 
   int resolved_waves() const override { return resolved_waves_; }
@@ -155,16 +158,7 @@ class OceanNode final : public gl::Node {
 
   // The projected grid (CPU, double), uploaded as float rest positions relative to the camera's
   // nadir (small numbers near the camera, where precision matters) and drawn with depth.
-  void draw_grid(const gl::FrameInputs& inputs) {
-    GridCamera camera;
-    camera.right = inputs.camera_right;
-    camera.up = inputs.camera_up;
-    camera.forward = inputs.camera_forward;
-    camera.tan_half_fov_y = inputs.tan_half_fov_y;
-    camera.aspect = double(inputs.width) / double(inputs.height);
-    camera.height = inputs.camera_height;
-    camera.width = inputs.width;
-    camera.height_px = inputs.height;
+  void draw_grid(const GridCamera& camera) {
     const ProjectedGrid grid =
         make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
     if (grid.rows == 0) return;
@@ -203,23 +197,18 @@ class OceanNode final : public gl::Node {
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
   // corners and centre that see the sea, their footprint the distance between neighbouring
   // pixels' points on the plane z = 0 (what dFdx gives the shader).
-  int count_resolved(const gl::FrameInputs& inputs) const {
-    if (inputs.camera_height < 0.0 || waves_.waves.empty()) return 0;
-    const double aspect = double(inputs.width) / double(inputs.height);
-    auto on_sea = [&](double px, double py, glm::dvec2& point) {
-      const double u = 2.0 * px / inputs.width - 1.0, v = 2.0 * py / inputs.height - 1.0;
-      const glm::dvec3 ray = inputs.camera_forward +
-                             (u * inputs.tan_half_fov_y * aspect) * inputs.camera_right +
-                             (v * inputs.tan_half_fov_y) * inputs.camera_up;
-      if (ray.z >= 0.0) return false;
-      point = glm::dvec2(ray.x, ray.y) * (inputs.camera_height / -ray.z);
-      return true;
+  int count_resolved(const GridCamera& camera) const {
+    if (waves_.waves.empty()) return 0;
+    // Image points of pixel (px, py) (pixels, y up as in the image plane).
+    auto image = [&](double px, double py) {
+      return glm::dvec2(2.0 * px / camera.width - 1.0, 2.0 * py / camera.height_px - 1.0);
     };
     double smallest = INFINITY;
-    for (double px : {0.5, 0.5 * inputs.width, inputs.width - 1.5})
-      for (double py : {0.5, 0.5 * inputs.height, inputs.height - 1.5}) {
+    for (double px : {0.5, 0.5 * camera.width, camera.width - 1.5})
+      for (double py : {0.5, 0.5 * camera.height_px, camera.height_px - 1.5}) {
         glm::dvec2 p, px1, py1;
-        if (!on_sea(px, py, p) || !on_sea(px + 1.0, py, px1) || !on_sea(px, py + 1.0, py1))
+        if (!sea_point(camera, image(px, py), p) || !sea_point(camera, image(px + 1.0, py), px1) ||
+            !sea_point(camera, image(px, py + 1.0), py1))
           continue;
         smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
       }
@@ -228,6 +217,7 @@ class OceanNode final : public gl::Node {
                                options_.settings.n_max)
         .positive;
   }
+
 
   OceanNodeOptions options_;
   WaveSet waves_;

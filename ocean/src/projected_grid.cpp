@@ -4,14 +4,32 @@
 #include <cmath>
 
 namespace thalassa::ocean {
-namespace {
+GridCamera make_grid_camera(const glm::dvec3& right, const glm::dvec3& up,
+                            const glm::dvec3& forward, double tan_half_fov_y, double height,
+                            int width_px, int height_px) {
+  GridCamera camera;
+  camera.right = right;
+  camera.up = up;
+  camera.forward = forward;
+  camera.tan_half_fov_y = tan_half_fov_y;
+  camera.aspect = double(width_px) / double(height_px);
+  camera.height = height;
+  camera.width = width_px;
+  camera.height_px = height_px;
+  return camera;
+}
 
-glm::dvec3 ray_through(const GridCamera& c, glm::dvec2 image) {
+glm::dvec3 grid_ray(const GridCamera& c, glm::dvec2 image) {
   return c.forward + (image.x * c.tan_half_fov_y * c.aspect) * c.right +
          (image.y * c.tan_half_fov_y) * c.up;
 }
 
-}  // namespace
+bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec2& point) {
+  const glm::dvec3 ray = grid_ray(camera, image);
+  if (ray.z >= 0.0 || !(camera.height > 0.0)) return false;
+  point = glm::dvec2(ray.x, ray.y) * (camera.height / -ray.z);
+  return true;
+}
 
 ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells) {
   ProjectedGrid grid;
@@ -53,7 +71,7 @@ ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int 
         ++grid.moved_to_horizon;
         moved[static_cast<std::size_t>(j) * grid.columns + i] = true;
       }
-      const glm::dvec3 ray = ray_through(camera, image);
+      const glm::dvec3 ray = grid_ray(camera, image);
       // ray.z <= -kHorizonDepression < 0 here; its forward component is 1 (in front).
       const double t = camera.height / std::max(-ray.z, kHorizonDepression);
       const std::size_t k = static_cast<std::size_t>(j) * grid.columns + i;

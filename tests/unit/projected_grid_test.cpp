@@ -15,23 +15,11 @@ namespace {
 GridCamera make_camera(double heading, double pitch, double roll, int width, int height,
                        double camera_height = 4.0, double fov_y = 45.0) {
   const CameraBasis b = camera_basis(heading, pitch, roll);
-  GridCamera c;
-  c.right = b.right;
-  c.up = b.up;
-  c.forward = b.forward;
-  c.tan_half_fov_y = std::tan(0.5 * fov_y * M_PI / 180.0);
-  c.aspect = double(width) / height;
-  c.height = camera_height;
-  c.width = width;
-  c.height_px = height;
-  return c;
+  return make_grid_camera(b.right, b.up, b.forward, std::tan(0.5 * fov_y * M_PI / 180.0),
+                          camera_height, width, height);
 }
 
-double ray_z(const GridCamera& c, glm::dvec2 image) {
-  return (c.forward + (image.x * c.tan_half_fov_y * c.aspect) * c.right +
-          (image.y * c.tan_half_fov_y) * c.up)
-      .z;
-}
+double ray_z(const GridCamera& c, glm::dvec2 image) { return grid_ray(c, image).z; }
 
 // Twice the signed area of triangle (a, b, c) in the image plane.
 double signed_area(glm::dvec2 a, glm::dvec2 b, glm::dvec2 c) {

@@ -50,6 +50,19 @@ struct ProjectedGrid {
 // far enough that no wave moves it visibly and close enough for float positions.
 constexpr double kHorizonDepression = 1e-6;
 
+// The camera of a frame, from its basis, vertical field of view and image size.
+GridCamera make_grid_camera(const glm::dvec3& right, const glm::dvec3& up,
+                            const glm::dvec3& forward, double tan_half_fov_y, double height,
+                            int width_px, int height_px);
+
+// The unnormalised view ray through image point (u, v) in [-1, 1]^2 (u right, v up); its
+// component along `forward` is 1.
+glm::dvec3 grid_ray(const GridCamera& camera, glm::dvec2 image);
+
+// Where the ray through image point `image` meets the sea at rest (m east, m north of the
+// nadir); false when it does not (at or above the horizon, or a camera not above the sea).
+bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec2& point);
+
 // cell_px: the grid cell's size in pixels (the paper's default 8); margin_cells: cells added
 // beyond each edge. Returns an empty grid (0 rows) when no part of the image sees the sea.
 ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells);
