@@ -1,24 +1,34 @@
 #include "thalassa/atmosphere/gl/sky_node.hpp"
 
+#include <cmath>
+
 namespace thalassa::atmosphere {
 namespace {
 
 class SkyNode final : public gl::Node {
  public:
-  explicit SkyNode(const SkyNodeOptions& options) : options_(options) {}
+  SkyNode(const SkyNodeOptions& options, std::shared_ptr<SkyProvider> provider)
+      : options_(options), provider_(std::move(provider)) {}
   std::string name() const override { return "sky"; }
   std::vector<std::string> built() const override {
-    std::vector<std::string> list = {"atmosphere.analytic_sky"};
-    if (options_.sun_disc) list.push_back("atmosphere.sun_disc");
+    std::vector<std::string> list = {"sky.background"};
+    if (options_.sun_disc) list.push_back("sky.sun_disc");
     return list;
   }
-  void draw(const gl::FrameInputs& /*inputs*/, Context& context) override {
-    gl::ShaderLibrary& shaders = context.shaders;
-    gl::Defines defines;
+  void draw(const gl::FrameInputs& inputs, Context& context) override {
+    gl::Defines defines = provider_->defines();
     if (options_.sun_disc) defines["SUN_DISC"] = "1";
     const GLuint program =
-        shaders.program({"engine/fullscreen.vert", "atmosphere/sky.frag", "", defines});
+        context.shaders.program({"engine/fullscreen.vert", "atmosphere/sky.frag", "", defines});
+    const glm::dvec3 disc = provider_->sun_disc_radiance();
+    glProgramUniform3f(program, glGetUniformLocation(program, "camera_position"), 0.0f, 0.0f,
+                       float(provider_->planet_radius() + inputs.camera_height));
+    glProgramUniform3f(program, glGetUniformLocation(program, "sun_disc_radiance"),
+                       float(disc.x), float(disc.y), float(disc.z));
+    glProgramUniform1f(program, glGetUniformLocation(program, "sun_cos_angular_radius"),
+                       float(std::cos(provider_->sun_angular_radius())));
     glUseProgram(program);
+    provider_->bind();
     // The sky lies at infinity: nothing drawn later can be hidden by it.
     gl::draw_fullscreen_pass();
     context.timer.end_pass("sky");
@@ -26,12 +36,14 @@ class SkyNode final : public gl::Node {
 
  private:
   SkyNodeOptions options_;
+  std::shared_ptr<SkyProvider> provider_;
 };
 
 }  // namespace
 
-std::unique_ptr<gl::Node> make_sky_node(const SkyNodeOptions& options) {
-  return std::make_unique<SkyNode>(options);
+std::unique_ptr<gl::Node> make_sky_node(const SkyNodeOptions& options,
+                                        std::shared_ptr<SkyProvider> provider) {
+  return std::make_unique<SkyNode>(options, std::move(provider));
 }
 
 }  // namespace thalassa::atmosphere

@@ -246,6 +246,10 @@ const std::vector<KeyDesc>& key_table() {
       number<&S::ocean, &OceanSettings::fresnel_r>(
           "ocean.fresnel_r", {0, 1}, "", "0.02",
           "Fresnel reflectance of the sea at normal incidence (R of the paper's eq. 14)."),
+      choice<&S::ocean, &OceanSettings::sky_filter>(
+          "ocean.sky_filter", {"texture_grad", "nine_samples"}, "\"texture_grad\"",
+          "Filtered sky reflection: the paper's single anisotropic fetch (eq. 27) or the average "
+          "of nine samples inside the filter's support (sec. 7.2)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),

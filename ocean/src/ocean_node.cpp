@@ -1,10 +1,10 @@
 #include "thalassa/ocean/gl/ocean_node.hpp"
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "analytic_sky_reference.hpp"
 #include "ross_brdf_reference.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
@@ -21,6 +21,7 @@ class OceanNode final : public gl::Node {
  public:
   explicit OceanNode(const OceanNodeOptions& options)
       : options_(options),
+        provider_(options.provider),
         waves_(make_wave_set(options.settings)),
         wave_buffer_(gl::make_buffer()),
         tail_buffer_(gl::make_buffer()),
@@ -43,25 +44,35 @@ class OceanNode final : public gl::Node {
     std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
                                      "ocean.projected_grid", "ocean.ross_brdf"};
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
-    if (options_.sky) list.push_back("ocean.sky_reflection");
+    if (options_.sky)
+      list.push_back(options_.sky_nine_samples ? "ocean.sky_reflection.nine_samples"
+                                               : "ocean.sky_reflection.texture_grad");
     if (options_.sea) list.push_back("ocean.refracted_light");
     return list;
   }
 
   void draw(const gl::FrameInputs& inputs, Context& context) override {
     const bool underwater = inputs.camera_height < 0.0;
-    gl::Defines lighting_defines;
+    gl::Defines lighting_defines = provider_->defines();
     if (options_.sun_glint) lighting_defines["SUN_GLINT"] = "1";
     if (options_.sky) lighting_defines["SKY_TERM"] = "1";
+    if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
     const GLuint lighting = context.shaders.program({.vertex = "engine/fullscreen.vert",
                                                      .fragment = "ocean/ocean_lighting.frag",
                                                      .defines = lighting_defines});
-    // The downwelling irradiance is the same for every pixel: once per frame, in double, by the
-    // reference of the very functions the shader uses.
-    const glm::dvec3 irradiance = glsl::AnalyticSunHorizontalIrradiance(inputs.sun_direction) +
-                                  glsl::AnalyticSkyIrradiance(inputs.sun_direction);
+    // The sea's sky map, seen from the sea surface at the camera's nadir (rebuilt only when the
+    // sun moves), and the per-frame constants of the lighting, in double from the provider.
+    const glm::dvec3 sun = inputs.sun_direction;
+    if (options_.sky) provider_->sky_map(0.0, sun, context.shaders, &context.timer);
+    const glm::dvec3 irradiance =
+        provider_->sun_irradiance(0.0, sun) + provider_->sky_irradiance(0.0, sun);
+    const double sun_solid_angle =
+        2.0 * glsl::PI * (1.0 - std::cos(provider_->sun_angular_radius()));
+    const glm::dvec3 sun_irradiance = provider_->sun_radiance(0.0, sun) * sun_solid_angle;
+    const double radius = provider_->planet_radius();
+    const double height = std::max(inputs.camera_height, 0.0);
     const glm::dvec3 reflectance = glsl::OCEAN_DEFAULT_DEEP_REFLECTANCE;
     auto location = [](GLuint program, const char* name) {
       return glGetUniformLocation(program, name);
@@ -74,6 +85,13 @@ class OceanNode final : public gl::Node {
                        float(reflectance.y), float(reflectance.z));
     glProgramUniform3f(lighting, location(lighting, "horizontal_irradiance"), float(irradiance.x),
                        float(irradiance.y), float(irradiance.z));
+    glProgramUniform3f(lighting, location(lighting, "sun_irradiance"), float(sun_irradiance.x),
+                       float(sun_irradiance.y), float(sun_irradiance.z));
+    glProgramUniform3f(lighting, location(lighting, "camera_position"), 0.0f, 0.0f,
+                       float(radius + height));
+    glProgramUniform1f(lighting, location(lighting, "horizon_distance"),
+                       float(std::sqrt(height * (2.0 * radius + height))));
+    provider_->bind();
     if (underwater) {
       glUseProgram(lighting);
       gl::draw_fullscreen_pass();
@@ -220,6 +238,7 @@ class OceanNode final : public gl::Node {
 
 
   OceanNodeOptions options_;
+  std::shared_ptr<atmosphere::SkyProvider> provider_;
   WaveSet waves_;
   gl::Buffer wave_buffer_;
   gl::Buffer tail_buffer_;
@@ -239,6 +258,7 @@ class OceanNode final : public gl::Node {
 }  // namespace
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options) {
+  if (!options.provider) throw std::invalid_argument("make_ocean_node: no sky provider");
   return std::make_unique<OceanNode>(options);
 }
 

@@ -1,10 +1,14 @@
 #include "thalassa/planet/renderer.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 
+#include "thalassa/atmosphere/environment_map.hpp"
 #include "thalassa/atmosphere/gl/sky_node.hpp"
+#include "thalassa/atmosphere/gl/sky_provider.hpp"
+#include "thalassa/atmosphere/model.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
@@ -65,12 +69,21 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
 
 }  // namespace
 
-void check_drawable(const Scene& scene, const std::string& source) {
-  if (!scene.sky.exr.empty())
-    throw SceneError(source +
-                     ": sky.exr: expected an empty value (skies from HDR images are not "
-                     "supported by this version yet), got \"" +
-                     scene.sky.exr + "\"");
+void check_drawable(const Scene& /*scene*/, const std::string& /*source*/) {}
+
+std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(const Scene& scene,
+                                                           const RendererOptions& options) {
+  const double radius =
+      scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius : atmosphere::kEarthMeanRadius;
+  if (!scene.sky.exr.empty()) {
+    auto map = std::make_shared<const atmosphere::EnvironmentMap>(scene.sky.exr);
+    return atmosphere::make_environment_provider(std::move(map), radius);
+  }
+  atmosphere::PrecomputeOptions precompute;
+  precompute.cache_dir = options.cache_dir;
+  return atmosphere::make_atmosphere_provider(
+      atmosphere::AtmosphereModel::create(atmosphere::AtmosphereParameters::earth(radius),
+                                          precompute));
 }
 
 struct Renderer::Impl {
@@ -86,6 +99,8 @@ struct Renderer::Impl {
   std::vector<std::string> pass_order;
   gl::VertexArray present_vao;
   gl::GpuTimer timer;
+  std::shared_ptr<atmosphere::SkyProvider> provider;
+  double provider_ms = 0.0;  // creating the provider: tables computed or loaded, uploaded
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
@@ -105,15 +120,26 @@ struct Renderer::Impl {
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
       throw gl::GlError("this OpenGL context lacks what thalassa needs: " + missing);
     }
+    const auto provider_start = std::chrono::steady_clock::now();
+    provider = make_sky_provider(scene, options);
+    provider_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                            provider_start)
+                      .count();
+    // A photograph's sun is where the photograph has it.
+    if (const auto sun = provider->sun_direction()) inputs.sun_direction = *sun;
     bool sky_visible = false, sea_visible = false;
     horizon_visibility(inputs, sky_visible, sea_visible);
-    const bool sun_up = inputs.sun_direction.z > 0.0;
-    if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}));
+    // The sun's disc and glint while any of the disc is above the horizon (the provider fades
+    // them as it sets).
+    const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
+    if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
     if (sea_visible)
       graph.add(ocean::make_ocean_node({.settings = scene.ocean,
                                         .sun_glint = sun_up && options.terms.sun,
                                         .sky = options.terms.sky,
-                                        .sea = options.terms.sea}));
+                                        .sea = options.terms.sea,
+                                        .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
+                                        .provider = provider}));
   }
 };
 
@@ -205,8 +231,15 @@ RenderStats Renderer::stats() const {
     stats.resolved_waves = std::max(stats.resolved_waves, node->resolved_waves());
   stats.built.push_back("engine.hdr_target.rgba32f+depth32f." + std::to_string(stats.width) + "x" +
                         std::to_string(stats.height));
+  for (const auto& item : m.provider->built()) stats.built.push_back(item);
   for (const auto& node : m.graph.nodes())
     for (const auto& item : node->built()) stats.built.push_back(item);
+  stats.sky_provider = m.provider->kind();
+  stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
+  for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
+  if (m.provider->sky_map_ms() > 0.0) stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());
+  if (m.provider->sky_map_array_ms() > 0.0)
+    stats.setup_ms.emplace_back("sky.map_array", m.provider->sky_map_array_ms());
   for (const auto& program : m.shaders.built_programs()) stats.built.push_back("shader:" + program);
   return stats;
 }

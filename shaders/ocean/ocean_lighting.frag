@@ -1,15 +1,15 @@
 // The ocean's second pass (Bruneton, Neyret & Holzschuch 2010, sec. 4-5, Algorithm 5.1; the
 // paper's sec. 7.3 times it as "lighting"): from the G-buffer of ocean_geometry.frag (normal,
 // unresolved slope variance), the sun (eq. 15), the sky (eq. 21 with the effective Fresnel of
-// eq. 26) and the refracted light (eq. 28). SUN_GLINT, SKY_TERM and SEA_TERM select the terms
-// (validation renders them one by one). With UNDERWATER (a camera below the surface) the water
-// body's light fills the view and no G-buffer is read.
-//
-// Until the sky-map provider exists (issue 4), the sky term reads the analytic sky in the mirror
-// direction of the mean normal, unfiltered (eq. 27's filtered fetch needs the map).
+// eq. 26 and the filtered sky-map fetch of eq. 27) and the refracted light (eq. 28), all from
+// the sky provider (atmosphere/sky_provider.glsl), then the aerial perspective between the
+// camera and the sea. SUN_GLINT, SKY_TERM and SEA_TERM select the terms (validation renders them
+// one by one); SKY_NINE_SAMPLES replaces eq. 27's single anisotropic fetch with the average of
+// nine samples inside the filter's support that the paper mentions (sec. 7.2). With UNDERWATER
+// (a camera below the surface) the water body's light fills the view and no G-buffer is read.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
-#include "atmosphere/analytic_sky.glsl"
+#include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
 
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
@@ -19,7 +19,29 @@ layout(binding = 1) uniform sampler2D variances;  // xy slope variance along, ac
 uniform vec2 downwind;                // unit, east-north-up
 uniform float fresnel_r;              // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;        // irradiance reflectance of the water body, per channel
-uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface, W m^-2 nm^-1
+uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface at sea level
+uniform vec3 sun_irradiance;          // L_sun Omega_sun at sea level, facing the sun
+uniform vec3 camera_position;         // planet-centred, m: (0, 0, planet radius + height)
+uniform float horizon_distance;       // m: where the plane's rays meet the sphere's horizon
+
+// Eq. 22 by a 3 x 3 Gauss-Hermite rule in slope space: p is a Gaussian of standard deviations
+// sigma_x, sigma_y, and the 3-point rule (nodes 0, +-sqrt(3) sigma; weights 2/3, 1/6, 1/6) is
+// exact for its average of polynomials up to degree 5. Each node reads the map at its exact
+// u(v, zeta) (OceanSkyMapCoordinates, not the linearisation eq. 27 assumes) with a footprint of
+// one sigma, so that the nodes' footprints together cover the kernel.
+vec3 SkyNineSamples(vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 sigma, vec2 du_x, vec2 du_y) {
+  const float node = sqrt(3.0);
+  const float weights[3] = float[3](1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0);
+  vec3 sum = vec3(0.0);
+  for (int j = 0; j < 3; ++j) {
+    for (int i = 0; i < 3; ++i) {
+      vec2 zeta = vec2(float(i - 1), float(j - 1)) * node * sigma;
+      vec2 u = OceanSkyMapCoordinates(v, t_x, t_y, n, zeta);
+      sum += weights[i] * weights[j] * SkyMapRadianceGrad(u, sigma.x * du_x, sigma.y * du_y);
+    }
+  }
+  return sum;
+}
 
 void main() {
 #ifdef UNDERWATER
@@ -43,23 +65,37 @@ void main() {
   const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
   const vec3 sun = FrameSunDirection();
 
-  // Sky (eq. 21, 26) and refracted light (eq. 28).
+  // Sky (eq. 21, 26, 27) and refracted light (eq. 28).
   const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
                                               fresnel_r);
-  vec3 mirror = reflect(ray, n);
-  if (mirror.z < 0.0) mirror = normalize(vec3(mirror.x, mirror.y, 1e-6));
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
-  sea += fresnel * AnalyticSkyRadiance(mirror, sun);
+  vec2 u0, du_x, du_y;
+  OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
+  const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
+#ifdef SKY_NINE_SAMPLES
+  sea += fresnel * SkyNineSamples(v, t_x, t_y, n, sigma, du_x, du_y);
+#else
+  sea += fresnel * SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
+#endif
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
-  sea += AnalyticSunTransmittedIrradiance(sun) *
+  sea += sun_irradiance *
          OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
 #endif
-  radiance = vec4(sea, 1.0);
+
+  // Aerial perspective to the sea point at rest on the plane z = 0 of the camera's nadir frame
+  // (its distance capped at the sphere's horizon, where the plane's rays would otherwise run to
+  // infinity).
+  const float height = FrameCameraHeight();
+  const float distance = min(height / max(-ray.z, 1e-9), horizon_distance);
+  vec3 transmittance;
+  const vec3 in_scattered =
+      SkyAerialPerspective(camera_position, camera_position + distance * ray, sun, transmittance);
+  radiance = vec4(sea * transmittance + in_scattered, 1.0);
 #endif
 }

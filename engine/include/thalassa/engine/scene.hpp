@@ -74,6 +74,8 @@ struct OceanSettings {
   double n_max = 2.5;        // N_max, [0, 100]
   double grid_cell = 8.0;    // projected grid cell, pixels, [1, 64]
   double fresnel_r = 0.02;   // Fresnel reflectance at normal incidence (eq. 14), [0, 1]
+  // The sky reflection's filter: "texture_grad" (eq. 27) or "nine_samples" (sec. 7.2).
+  std::string sky_filter = "texture_grad";
 };
 
 struct SkySettings {

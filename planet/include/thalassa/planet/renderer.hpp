@@ -35,6 +35,11 @@ struct RenderStats {
   std::vector<std::pair<std::string, double>> passes;  // pass -> GPU ms, median over frames
   int resolved_waves = 0;          // waves summed as geometry or normals (surface mode)
   std::vector<std::string> built;  // modules and shader features this scene caused to exist
+  std::string sky_provider;        // "atmosphere" or "environment_map"
+  // One-off costs, wall-clock ms: "sky.provider" (creating it, the atmosphere's tables computed
+  // or loaded from the cache included), "atmosphere.precompute" / "atmosphere.load",
+  // "sky.map", "sky.map_array".
+  std::vector<std::pair<std::string, double>> setup_ms;
 };
 
 // The ocean's light terms (Bruneton et al. 2010 sec. 5): all by default; validation renders
@@ -48,13 +53,15 @@ struct LightTerms {
 struct RendererOptions {
   std::vector<std::string> shader_roots;  // searched before the default shader folders
   LightTerms terms;
+  // Folder of the atmosphere's table cache (empty: $THALASSA_CACHE_DIR, else
+  // $XDG_CACHE_HOME/thalassa, else ~/.cache/thalassa).
+  std::string cache_dir;
 };
 
-// Throws SceneError for a valid scene that this version cannot draw yet (a non-empty sky.exr:
-// skies from HDR images arrive with the environment-map provider), rather than drawing
-// something else silently. `source` names where sky.exr came from in the message (a file,
-// "--set"; SceneBuilder::source_of). The Renderer checks it too; a program calls it first to
-// refuse before any GL work.
+// Throws SceneError for a valid scene that this version cannot draw yet, rather than drawing
+// something else silently (every valid scene is drawable at present). `source` names where the
+// offending key came from (a file, "--set"; SceneBuilder::source_of). The Renderer checks it
+// too; a program calls it first to refuse before any GL work.
 void check_drawable(const Scene& scene, const std::string& source = "scene");
 
 class Renderer {

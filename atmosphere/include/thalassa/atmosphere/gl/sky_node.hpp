@@ -1,19 +1,19 @@
-// thalassa — the sky behind the scene, as a scene-graph node (GL layer, not installed).
-//
-// Until the atmosphere model (issue 4) lands, this draws the foundation's placeholder: the
-// closed-form single-scattering Rayleigh sky of shaders/atmosphere/analytic_sky.glsl.
+// thalassa — the sky behind the scene, as a scene-graph node (GL layer, not installed): the sky
+// provider's radiance along every pixel's view ray, with the sun's disc (issue 4, point 3f).
 #pragma once
 
 #include <memory>
 
+#include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 
 namespace thalassa::atmosphere {
 
 struct SkyNodeOptions {
-  bool sun_disc = true;  // draw the sun's disc (left out when the sun is below the horizon)
+  bool sun_disc = true;  // draw the sun's disc
 };
 
-std::unique_ptr<gl::Node> make_sky_node(const SkyNodeOptions& options);
+std::unique_ptr<gl::Node> make_sky_node(const SkyNodeOptions& options,
+                                        std::shared_ptr<SkyProvider> provider);
 
 }  // namespace thalassa::atmosphere

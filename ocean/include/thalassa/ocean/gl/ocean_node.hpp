@@ -1,12 +1,15 @@
 // thalassa — the paper's ocean as a scene-graph node (GL layer, not installed).
 //
-// Bruneton, Neyret & Holzschuch 2010 per pixel on the sea at rest (shaders/ocean/ocean.frag):
-// normals from the waves longer than a pixel, the Ross BRDF widened by the shorter ones, sun,
-// sky and refracted light. The projected grid's displacement (issue 3, point 2) comes next.
+// Bruneton, Neyret & Holzschuch 2010: the projected grid displaced by the waves longer than a
+// grid cell (ocean.vert), per-pixel normals from the waves longer than a pixel and the unresolved
+// slope variance of the shorter ones (ocean_geometry.frag), then the Ross BRDF lit by the sun,
+// the sky and the refracted light from the sky provider, seen through the aerial perspective
+// (ocean_lighting.frag).
 #pragma once
 
 #include <memory>
 
+#include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/scene.hpp"
 
@@ -17,6 +20,10 @@ struct OceanNodeOptions {
   bool sun_glint = true;   // the reflected sun (eq. 15); left out when the sun has set
   bool sky = true;         // the reflected sky (eq. 21)
   bool sea = true;         // the light refracted from the water (eq. 28)
+  // Eq. 27's single anisotropic fetch (false) or the average of nine samples (true).
+  bool sky_nine_samples = false;
+  // All sky light: the sky map, sun radiance, irradiance and aerial perspective.
+  std::shared_ptr<atmosphere::SkyProvider> provider;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
