@@ -24,7 +24,7 @@ struct RenderArgs {
   std::string backend;  // empty: the default headless backend
   int repeat = 1;
   bool float_exr = false;
-  std::string terms = "sun,sky,sea";  // the ocean's light terms, any subset
+  std::string terms = "sun,sky,sea,air";  // the ocean's light terms, any subset
 };
 
 struct InfoArgs {

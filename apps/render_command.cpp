@@ -75,9 +75,9 @@ std::string format_number(double value) {
   return text;
 }
 
-// "sun,sky,sea" (any non-empty subset, any order) -> the terms; an error message otherwise.
+// "sun,sky,sea,air" (any non-empty subset, any order) -> the terms; an error message otherwise.
 std::string parse_terms(const std::string& text, LightTerms& terms) {
-  terms = {false, false, false};
+  terms = {false, false, false, false};
   std::stringstream list(text);
   int count = 0;
   for (std::string item; std::getline(list, item, ',');) {
@@ -87,12 +87,14 @@ std::string parse_terms(const std::string& text, LightTerms& terms) {
       terms.sky = true;
     else if (item == "sea")
       terms.sea = true;
+    else if (item == "air")
+      terms.air = true;
     else
-      return "--terms " + text + ": expected a comma-separated subset of sun, sky, sea, got \"" +
-             item + "\"";
+      return "--terms " + text +
+             ": expected a comma-separated subset of sun, sky, sea, air, got \"" + item + "\"";
     ++count;
   }
-  if (count == 0) return "--terms: expected at least one of sun, sky, sea";
+  if (count == 0) return "--terms: expected at least one of sun, sky, sea, air";
   return "";
 }
 
@@ -137,7 +139,8 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
   render->add_flag("--float", args.float_exr, "Write a 32-bit float EXR (default: half)");
   render
       ->add_option("--terms", args.terms,
-                   "The ocean's light terms drawn, any of sun,sky,sea (comma-separated)")
+                   "The ocean's light terms drawn, any of sun,sky,sea,air (comma-separated; air: "
+                   "the light the atmosphere scatters between the camera and the sea)")
       ->capture_default_str();
 }
 

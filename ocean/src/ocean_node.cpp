@@ -48,6 +48,7 @@ class OceanNode final : public gl::Node {
       list.push_back(options_.sky_nine_samples ? "ocean.sky_reflection.nine_samples"
                                                : "ocean.sky_reflection.texture_grad");
     if (options_.sea) list.push_back("ocean.refracted_light");
+    if (options_.air) list.push_back("ocean.aerial_perspective");
     return list;
   }
 
@@ -58,6 +59,7 @@ class OceanNode final : public gl::Node {
     if (options_.sky) lighting_defines["SKY_TERM"] = "1";
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
+    if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
     const GLuint lighting = context.shaders.program({.vertex = "engine/fullscreen.vert",
                                                      .fragment = "ocean/ocean_lighting.frag",

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <map>
 
@@ -69,14 +70,25 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
 
 }  // namespace
 
-void check_drawable(const Scene& /*scene*/, const std::string& /*source*/) {}
+void check_drawable(const Scene& scene, const std::string& source) {
+  std::error_code error;
+  if (!scene.sky.exr.empty() && !std::filesystem::is_regular_file(scene.sky.exr, error))
+    throw SceneError(source + ": sky.exr: expected an HDR image file, got \"" + scene.sky.exr +
+                     "\" (no such file)");
+}
 
 std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(const Scene& scene,
                                                            const RendererOptions& options) {
   const double radius =
       scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius : atmosphere::kEarthMeanRadius;
   if (!scene.sky.exr.empty()) {
-    auto map = std::make_shared<const atmosphere::EnvironmentMap>(scene.sky.exr);
+    std::shared_ptr<const atmosphere::EnvironmentMap> map;
+    try {
+      map = std::make_shared<const atmosphere::EnvironmentMap>(scene.sky.exr);
+    } catch (const atmosphere::EnvironmentMapError& e) {
+      // A photograph that is not a usable sky is invalid input, like a bad key.
+      throw SceneError(std::string("sky.exr: ") + e.what());
+    }
     return atmosphere::make_environment_provider(std::move(map), radius);
   }
   atmosphere::PrecomputeOptions precompute;
@@ -138,6 +150,7 @@ struct Renderer::Impl {
                                         .sun_glint = sun_up && options.terms.sun,
                                         .sky = options.terms.sky,
                                         .sea = options.terms.sea,
+                                        .air = options.terms.air,
                                         .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
                                         .provider = provider}));
   }

@@ -9,12 +9,12 @@
 //   #pragma GCC diagnostic ignored "-Wunused-function"
 //   namespace thalassa::glsl {
 //   namespace {
-//   #include "atmosphere/analytic_sky.glsl"  // its own #include lines resolve through -I shaders
+//   #include "ocean/ross_brdf.glsl"         // its own #include lines resolve through -I shaders
 //   }  // namespace
 //   }  // namespace thalassa::glsl
 //   #pragma GCC diagnostic pop
 //
-// as atmosphere/src/analytic_sky_reference.hpp does (use such a header rather than repeating
+// as ocean/src/ross_brdf_reference.hpp does (use such a header rather than repeating
 // this). This header must be included at global scope (it includes <cmath> and GLM), and the
 // .glsl files always inside thalassa::glsl's anonymous namespace: the types and built-ins below
 // live in thalassa::glsl; the anonymous namespace gives the (non-inline) .glsl functions internal

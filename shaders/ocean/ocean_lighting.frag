@@ -3,9 +3,10 @@
 // unresolved slope variance), the sun (eq. 15), the sky (eq. 21 with the effective Fresnel of
 // eq. 26 and the filtered sky-map fetch of eq. 27) and the refracted light (eq. 28), all from
 // the sky provider (atmosphere/sky_provider.glsl), then the aerial perspective between the
-// camera and the sea. SUN_GLINT, SKY_TERM and SEA_TERM select the terms (validation renders them
-// one by one); SKY_NINE_SAMPLES replaces eq. 27's single anisotropic fetch with the average of
-// nine samples inside the filter's support that the paper mentions (sec. 7.2). With UNDERWATER
+// camera and the sea. SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
+// the terms (validation renders them one by one); SKY_NINE_SAMPLES replaces eq. 27's single
+// anisotropic fetch with the average of nine samples inside the filter's support that the paper
+// mentions (sec. 7.2). With UNDERWATER
 // (a camera below the surface) the water body's light fills the view and no G-buffer is read.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
@@ -94,8 +95,11 @@ void main() {
   const float height = FrameCameraHeight();
   const float distance = min(height / max(-ray.z, 1e-9), horizon_distance);
   vec3 transmittance;
-  const vec3 in_scattered =
+  vec3 in_scattered =
       SkyAerialPerspective(camera_position, camera_position + distance * ray, sun, transmittance);
+#ifndef AIR_TERM
+  in_scattered = vec3(0.0);
+#endif
   radiance = vec4(sea * transmittance + in_scattered, 1.0);
 #endif
 }

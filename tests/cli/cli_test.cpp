@@ -101,7 +101,10 @@ TEST_F(Cli, StatsJsonHasTheContractKeys) {
   auto has = [&](const std::string& item) {
     return std::find(built.begin(), built.end(), item) != built.end();
   };
-  EXPECT_TRUE(has("atmosphere.analytic_sky"));
+  EXPECT_TRUE(has("sky.background"));
+  // A ground view builds one sky map for the sea, not the array of the view from space.
+  EXPECT_TRUE(has("atmosphere.sky_map"));
+  EXPECT_FALSE(has("atmosphere.sky_map_array"));
   EXPECT_TRUE(has("ocean.ross_brdf"));
   EXPECT_TRUE(has("ocean.sun_glint"));
   EXPECT_TRUE(has("ocean.waves.60"));
@@ -115,7 +118,11 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
   ASSERT_EQ(run("render " + kSmall + " --set camera.pitch=60 --no-png --stats s.json").status, 0);
   std::ifstream in(dir_ / "s.json");
   const auto built = nlohmann::json::parse(in)["built"].get<std::vector<std::string>>();
-  for (const auto& item : built) EXPECT_EQ(item.find("ocean"), std::string::npos) << item;
+  for (const auto& item : built) {
+    EXPECT_EQ(item.find("ocean"), std::string::npos) << item;
+    // No sea, so no sky map to reflect.
+    EXPECT_EQ(item.find("sky_map"), std::string::npos) << item;
+  }
   ASSERT_EQ(run("render " + kSmall + " --set sun.zenith=100 --no-png --stats t.json").status, 0);
   std::ifstream in2(dir_ / "t.json");
   const auto built2 = nlohmann::json::parse(in2)["built"].get<std::vector<std::string>>();
@@ -127,7 +134,7 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
   ASSERT_EQ(run("render " + kSmall + " --set camera.height=0 --no-png --stats z.json").status, 0);
   std::ifstream in_z(dir_ / "z.json");
   const auto built_z = nlohmann::json::parse(in_z)["built"].get<std::vector<std::string>>();
-  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "atmosphere.analytic_sky"), built_z.end());
+  EXPECT_NE(std::find(built_z.begin(), built_z.end(), "sky.background"), built_z.end());
   EXPECT_NE(std::find(built_z.begin(), built_z.end(), "ocean.ross_brdf"), built_z.end());
   EXPECT_EQ(run("render " + kSmall + " --set camera.height=25000 --no-png --stats u.json").status,
             0);
@@ -138,23 +145,26 @@ TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
 // The light terms add up: sun + sky + sea rendered apart sum to the frame rendered with all
 // three (the sky behind the sea is the same in every render, so it is counted once).
 TEST_F(Cli, LightTermsAddUp) {
-  for (const char* terms : {"sun,sky,sea", "sun", "sky", "sea"})
+  for (const char* terms : {"sun,sky,sea,air", "sun", "sky", "sea", "air"})
     ASSERT_EQ(run("render " + kSmall + " --float --no-png --terms " + std::string(terms) + " -o " +
                   std::string(terms) + ".exr")
                   .status,
               0)
         << terms;
-  const auto all = thalassa::read_image((dir_ / "sun,sky,sea.exr").string());
+  const auto all = thalassa::read_image((dir_ / "sun,sky,sea,air.exr").string());
   const auto sun = thalassa::read_image((dir_ / "sun.exr").string());
   const auto sky = thalassa::read_image((dir_ / "sky.exr").string());
   const auto sea = thalassa::read_image((dir_ / "sea.exr").string());
+  const auto air = thalassa::read_image((dir_ / "air.exr").string());
   int sea_pixels = 0;
   for (std::size_t i = 0; i < all.rgba.size(); i += 4) {
     // Sky pixels are identical in all four renders; sea pixels hold the terms.
-    if (sun.rgba[i] == sky.rgba[i] && sky.rgba[i] == sea.rgba[i]) continue;
+    if (sun.rgba[i] == sky.rgba[i] && sky.rgba[i] == sea.rgba[i] && sea.rgba[i] == air.rgba[i])
+      continue;
     ++sea_pixels;
     for (int c = 0; c < 3; ++c) {
-      const double sum = double(sun.rgba[i + c]) + sky.rgba[i + c] + sea.rgba[i + c];
+      const double sum =
+          double(sun.rgba[i + c]) + sky.rgba[i + c] + sea.rgba[i + c] + air.rgba[i + c];
       EXPECT_NEAR(all.rgba[i + c], sum, 1e-5 * sum + 1e-7) << "pixel " << i / 4;
     }
   }
@@ -253,5 +263,43 @@ TEST_F(Cli, BothHeadlessBackendsRenderTheSameImage) {
   }
 }
 #endif
+
+// An HDR photograph lights the sea (issue 4, point 4): the environment-map provider replaces
+// the atmosphere, its sun replaces sun.*, and a file that is not an equirectangular image is
+// invalid input.
+TEST_F(Cli, HdrPhotographLightsTheScene) {
+  // A 64 x 32 sky: blue, brighter toward the horizon, with a 2 x 2-texel sun 1e5 times brighter
+  // at azimuth 90 deg (east), 22.5 deg high.
+  thalassa::Image sky;
+  sky.width = 64;
+  sky.height = 32;
+  sky.rgba.assign(64 * 32 * 4, 1.0f);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      float* p = sky.pixel(x, y);
+      const float horizon = float(y) / 16.0f;  // 0 at the zenith, 1 at the horizon
+      p[0] = 0.02f + 0.05f * horizon, p[1] = 0.05f + 0.05f * horizon, p[2] = 0.12f;
+    }
+  for (int y = 11; y < 13; ++y)
+    for (int x = 15; x < 17; ++x)
+      for (int c = 0; c < 3; ++c) sky.pixel(x, y)[c] = 1e4f;
+  thalassa::write_exr((dir_ / "photo.exr").string(), sky, thalassa::ExrPixelType::Float);
+  const Result r = run("render " + kSmall + " --set sky.exr=photo.exr --no-png --stats s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(dir_ / "s.json");
+  const auto built = nlohmann::json::parse(in)["built"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(built.begin(), built.end(), "environment_map.panorama"), built.end());
+  for (const auto& item : built) EXPECT_EQ(item.find("atmosphere.model"), std::string::npos);
+  const auto image = thalassa::read_image((dir_ / "thalassa.exr").string());
+  for (float v : image.rgba) EXPECT_TRUE(std::isfinite(v));
+
+  thalassa::Image square;
+  square.width = square.height = 16;
+  square.rgba.assign(16 * 16 * 4, 1.0f);
+  thalassa::write_exr((dir_ / "square.exr").string(), square, thalassa::ExrPixelType::Half);
+  expect_invalid(run("render " + kSmall + " --set sky.exr=square.exr -o bad.exr"),
+                 {"sky.exr", "square.exr"});
+  EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
+}
 
 }  // namespace

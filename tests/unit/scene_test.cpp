@@ -632,7 +632,8 @@ TEST(SceneKeys, ListsEveryKeyOnce) {
       "ocean.wind_direction", "ocean.spectrum",   "ocean.waves",
       "ocean.lambda_min",     "ocean.lambda_max", "ocean.seed",
       "ocean.n_min",          "ocean.n_max",      "ocean.grid_cell",
-      "ocean.fresnel_r",      "sky.model",        "sky.exr"};
+      "ocean.fresnel_r",      "ocean.sky_filter", "sky.model",
+      "sky.exr"};
   std::set<std::string> seen;
   for (const auto& k : scene_keys()) {
     EXPECT_TRUE(seen.insert(k.path).second) << "duplicate " << k.path;

@@ -2,7 +2,9 @@
 // reference (tests/gpu/reference_test.cpp). Inputs come from a float texture, exactly as the
 // CPU sees them: texel (x, y) holds the unit view direction (xyz) for that pixel.
 #include "common/definitions.glsl"
-#include "atmosphere/analytic_sky.glsl"
+#if FUNCTION == 1 || FUNCTION == 2
+#include "atmosphere/sky_provider.glsl"
+#endif
 #include "ocean/ross_brdf.glsl"
 #include "ocean/trochoids.glsl"
 
@@ -13,14 +15,26 @@ uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
 // position (m, relative to the frame's origin) in the input texel's xy.
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
 uniform int wave_count;
+// FUNCTION 1 and 2: the camera, planet-centred (m), and for 2 the distance (m) to the point
+// along the view direction.
+uniform vec3 camera;
+uniform float point_distance;
 layout(location = 0) out vec4 result;
 
 void main() {
   const vec3 v = texelFetch(inputs, ivec2(gl_FragCoord.xy), 0).xyz;
 #if FUNCTION == 1
-  result = vec4(AnalyticSkyRadiance(v, sun_dir), 1.0);
+  // The sky's radiance from the atmosphere's tables (no sun disc), and its transmittance's
+  // green channel.
+  vec3 transmittance;
+  const vec3 sky = SkyBackgroundRadiance(camera, v, sun_dir, transmittance);
+  result = vec4(sky, transmittance.y);
 #elif FUNCTION == 2
-  result = vec4(AnalyticSunDiscRadiance(v, sun_dir), 1.0);
+  // Aerial perspective to the point at point_distance along v; transmittance's green channel.
+  vec3 transmittance;
+  const vec3 in_scattered =
+      SkyAerialPerspective(camera, camera + point_distance * v, sun_dir, transmittance);
+  result = vec4(in_scattered, transmittance.y);
 #elif FUNCTION == 5
   // The Ross BRDF's sun term (eq. 15), the effective Fresnel (eq. 26) and Smith's Lambda.
   result = vec4(OceanReflectedSun(v, sun_dir, slope_variance, 0.02),

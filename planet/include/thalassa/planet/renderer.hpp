@@ -48,6 +48,9 @@ struct LightTerms {
   bool sun = true;  // reflected sun (eq. 15)
   bool sky = true;  // reflected sky (eq. 21)
   bool sea = true;  // light refracted from the water (eq. 28)
+  // Light the atmosphere scatters toward the camera between it and the sea (aerial
+  // perspective's in-scattered part; its transmittance applies to the other terms always).
+  bool air = true;
 };
 
 struct RendererOptions {
@@ -58,16 +61,17 @@ struct RendererOptions {
   std::string cache_dir;
 };
 
-// Throws SceneError for a valid scene that this version cannot draw yet, rather than drawing
-// something else silently (every valid scene is drawable at present). `source` names where the
+// Throws SceneError for a valid scene that cannot be drawn as it stands, rather than drawing
+// something else silently: a sky.exr that is not an existing file. `source` names where the
 // offending key came from (a file, "--set"; SceneBuilder::source_of). The Renderer checks it
-// too; a program calls it first to refuse before any GL work.
+// too (and throws SceneError for a sky.exr that is not a usable equirectangular HDR image); a
+// program calls it first to refuse before any GL work.
 void check_drawable(const Scene& scene, const std::string& source = "scene");
 
 class Renderer {
  public:
   // `context` must be current and stay alive as long as the Renderer. Throws SceneError for a
-  // valid scene that this version cannot draw (sky.exr), GlError or ShaderError otherwise.
+  // scene that cannot be drawn (a missing or unusable sky.exr), GlError or ShaderError otherwise.
   Renderer(GlContext& context, const Scene& scene, RendererOptions options = {});
   ~Renderer();
   Renderer(const Renderer&) = delete;

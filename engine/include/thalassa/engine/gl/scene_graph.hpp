@@ -54,7 +54,7 @@ class Node {
   virtual ~Node() = default;
   // The node's name ("sky", "ocean"); its passes are named in the statistics by end_pass.
   virtual std::string name() const = 0;
-  // What this node caused to be created ("atmosphere.analytic_sky", ...), for `built`.
+  // What this node caused to be created ("atmosphere.sky_map", ...), for `built`.
   virtual std::vector<std::string> built() const = 0;
   // What a node draws with: the shader library, the HDR target (bound when draw() is called;
   // a node that draws elsewhere first must bind it back) and the timer, on which the node

@@ -20,6 +20,7 @@ struct OceanNodeOptions {
   bool sun_glint = true;   // the reflected sun (eq. 15); left out when the sun has set
   bool sky = true;         // the reflected sky (eq. 21)
   bool sea = true;         // the light refracted from the water (eq. 28)
+  bool air = true;         // the in-scattered light between the camera and the sea
   // Eq. 27's single anisotropic fetch (false) or the average of nine samples (true).
   bool sky_nine_samples = false;
   // All sky light: the sky map, sun radiance, irradiance and aerial perspective.
