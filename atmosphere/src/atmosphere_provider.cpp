@@ -1,5 +1,6 @@
 // The sky provider of the physical atmosphere: the model's tables on the GPU, stereographic sky
 // maps rendered from them (atmosphere/sky_map.frag), and the CPU answers through the same code.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -71,8 +72,12 @@ class AtmosphereProvider final : public SkyProvider {
       : model_(std::move(model)), settings_(settings) {
     if (settings_.size < 1 || settings_.size > 8192)
       throw std::invalid_argument("sky map size must be in [1, 8192]");
-    if (settings_.array_layers < 2 || settings_.array_layers > 256)
-      throw std::invalid_argument("sky map array layers must be in [2, 256]");
+    if (settings_.array_layers < 3 || settings_.array_layers > 256)
+      throw std::invalid_argument("sky map array layers must be in [3, 256]");
+    if (!(settings_.array_knee_layer > 0 && settings_.array_knee_layer < settings_.array_layers - 1 &&
+          settings_.array_knee_zenith > 0.0 &&
+          settings_.array_knee_zenith < settings_.array_max_sun_zenith))
+      throw std::invalid_argument("sky map array knee must lie strictly inside the array");
     const ModelTables& tables = model_->tables();
     transmittance_ = upload_2d(tables.transmittance);
     scattering_ = upload_3d(tables.scattering);
@@ -132,8 +137,7 @@ class AtmosphereProvider final : public SkyProvider {
                        settings_.size, settings_.size, settings_.array_layers);
     set_sky_map_sampling(sky_map_array_.get());
     for (int layer = 0; layer < settings_.array_layers; ++layer) {
-      const double zenith =
-          settings_.array_max_sun_zenith * layer / (settings_.array_layers - 1);
+      const double zenith = sky_map_array_zenith(settings_, layer);
       render_map(shaders, sky_map_array_.get(), layer, 0.0,
                  glm::dvec3(0.0, std::sin(zenith), std::cos(zenith)));
     }
@@ -246,6 +250,22 @@ class AtmosphereProvider final : public SkyProvider {
 };
 
 }  // namespace
+
+double sky_map_array_zenith(const SkyMapSettings& s, double layer) {
+  const double k = s.array_knee_layer, last = s.array_layers - 1;
+  layer = std::clamp(layer, 0.0, last);
+  if (layer <= k) return s.array_knee_zenith * layer / k;
+  return s.array_knee_zenith +
+         (s.array_max_sun_zenith - s.array_knee_zenith) * (layer - k) / (last - k);
+}
+
+double sky_map_array_layer(const SkyMapSettings& s, double zenith) {
+  const double k = s.array_knee_layer, last = s.array_layers - 1;
+  zenith = std::clamp(zenith, 0.0, s.array_max_sun_zenith);
+  if (zenith <= s.array_knee_zenith) return k * zenith / s.array_knee_zenith;
+  return k + (last - k) * (zenith - s.array_knee_zenith) /
+                 (s.array_max_sun_zenith - s.array_knee_zenith);
+}
 
 std::shared_ptr<SkyProvider> make_atmosphere_provider(std::shared_ptr<const AtmosphereModel> model,
                                                       const SkyMapSettings& settings) {
