@@ -42,7 +42,7 @@ class OceanNode final : public gl::Node {
   std::string name() const override { return "ocean"; }
   std::vector<std::string> built() const override {
     std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
-                                     "ocean.projected_grid", "ocean.ross_brdf"};
+                                     "ocean.projected_grid", "ocean.backstop", "ocean.ross_brdf"};
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky)
       list.push_back(options_.sky_nine_samples ? "ocean.sky_reflection.nine_samples"
@@ -124,6 +124,7 @@ class OceanNode final : public gl::Node {
         make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
                          inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height);
     draw_grid(camera);
+    draw_backstop(context.shaders);
     context.timer.end_pass("ocean.geometry");
 
     // Pass 2, lighting (sec. 7.3's second part), into the HDR target where the grid drew.
@@ -212,6 +213,30 @@ class OceanNode final : public gl::Node {
     glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid.indices.size()), GL_UNSIGNED_INT,
                    nullptr);
     glBindVertexArray(static_cast<GLuint>(previous_vertex_array));
+  }
+
+  // The pixels the grid left uncovered below the horizon get the sea at rest
+  // (ocean_geometry.frag, BACKSTOP): a full-screen pass whose depth test passes only where the
+  // depth is still the cleared far plane, so it costs only what the holes cover (and an early
+  // discard on the sky).
+  void draw_backstop(gl::ShaderLibrary& shaders) {
+    const GLuint program = shaders.program({.vertex = "engine/fullscreen.vert",
+                                            .fragment = "ocean/ocean_geometry.frag",
+                                            .defines = {{"BACKSTOP", "1"}}});
+    glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
+                       static_cast<GLint>(waves_.waves.size()));
+    glProgramUniform2f(program, glGetUniformLocation(program, "downwind"),
+                       float(waves_.downwind.x), float(waves_.downwind.y));
+    glProgramUniform1f(program, glGetUniformLocation(program, "n_min"),
+                       float(options_.settings.n_min));
+    glProgramUniform1f(program, glGetUniformLocation(program, "n_max"),
+                       float(options_.settings.n_max));
+    glUseProgram(program);
+    glDepthMask(GL_FALSE);
+    glDepthFunc(GL_EQUAL);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
   }
 
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image

@@ -3,11 +3,23 @@
 // pixel's normal sums the waves longer than the pixel at the pixel's rest position (eq. 3 with
 // w_n; not from the filtered positions), and the shorter ones give the unresolved slope
 // variance (eq. 4, w_r = 1 - w_n). Both go to a G-buffer that ocean_lighting.frag shades.
+//
+// With BACKSTOP the same shader runs as a full-screen pass after the grid, on the pixels the
+// grid left uncovered (depth test EQUAL to the cleared far depth): their rest position is where
+// the view ray meets the sea at rest. A camera lower than the crests around it (1.5 m over a
+// 15 m/s sea) sees triangles displaced past it, folded or seen from below; without the backstop
+// those pixels showed the sky pass's dark "ground" (issue 3).
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
 
+#ifdef BACKSTOP
+// The depth test must reject the covered pixels before the shader runs (the discard below would
+// otherwise let a driver defer the test past the wave sum).
+layout(early_fragment_tests) in;
+#else
 in vec2 rest_position;  // m east and north of the camera's nadir (ocean.vert)
+#endif
 layout(location = 0) out vec4 normal_out;    // xyz: unit normal, east-north-up; w: 1 (coverage)
 layout(location = 1) out vec4 variance_out;  // xy: slope variance along, across the wind
 
@@ -25,9 +37,18 @@ uniform float n_max;
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
+#ifdef BACKSTOP
+  // Where the ray meets the plane z = 0 (the grazing clamp keeps x finite for derivatives
+  // before rays that never meet it are discarded).
+  const vec2 x = vec2(ray.x, ray.y) * (FrameCameraHeight() / max(-ray.z, 1e-6));
+#else
   const vec2 x = rest_position;
+#endif
   // The pixel's footprint on the sea (m): its larger side, so that no resolved wave aliases.
   const float footprint = max(max(length(dFdx(x)), length(dFdy(x))), 1e-6);
+#ifdef BACKSTOP
+  if (ray.z >= 0.0) discard;  // the sky's pixel
+#endif
 
   // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
   // longest first, so w_n falls with the index and the loop ends at the first unresolved wave.
