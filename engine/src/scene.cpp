@@ -246,6 +246,17 @@ const std::vector<KeyDesc>& key_table() {
       number<&S::ocean, &OceanSettings::fresnel_r>(
           "ocean.fresnel_r", {0, 1}, "", "0.02",
           "Fresnel reflectance of the sea at normal incidence (R of the paper's eq. 14)."),
+      number<&S::ocean, &OceanSettings::deep_reflectance_r>(
+          "ocean.deep_reflectance_r", {0, 1}, "", "0.004",
+          "Irradiance reflectance of the water below the surface at 680 nm (red): the "
+          "deep-water radiance behind L_sea is this times the downwelling irradiance / pi "
+          "(eq. 28)."),
+      number<&S::ocean, &OceanSettings::deep_reflectance_g>(
+          "ocean.deep_reflectance_g", {0, 1}, "", "0.016",
+          "Irradiance reflectance of the water below the surface at 550 nm (green)."),
+      number<&S::ocean, &OceanSettings::deep_reflectance_b>(
+          "ocean.deep_reflectance_b", {0, 1}, "", "0.047",
+          "Irradiance reflectance of the water below the surface at 440 nm (blue)."),
       choice<&S::ocean, &OceanSettings::sky_filter>(
           "ocean.sky_filter", {"texture_grad", "nine_samples"}, "\"texture_grad\"",
           "Filtered sky reflection: the paper's single anisotropic fetch (eq. 27) or the average "

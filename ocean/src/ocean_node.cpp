@@ -75,7 +75,9 @@ class OceanNode final : public gl::Node {
     const glm::dvec3 sun_irradiance = provider_->sun_radiance(0.0, sun) * sun_solid_angle;
     const double radius = provider_->planet_radius();
     const double height = std::max(inputs.camera_height, 0.0);
-    const glm::dvec3 reflectance = glsl::OCEAN_DEFAULT_DEEP_REFLECTANCE;
+    const glm::dvec3 reflectance(options_.settings.deep_reflectance_r,
+                                 options_.settings.deep_reflectance_g,
+                                 options_.settings.deep_reflectance_b);
     auto location = [](GLuint program, const char* name) {
       return glGetUniformLocation(program, name);
     };

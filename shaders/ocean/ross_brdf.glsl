@@ -385,10 +385,12 @@ void OceanSkyMapGradients(IN(vec3) v, IN(vec3) t_x, IN(vec3) t_y, IN(vec3) n, OU
 // ---------------------------------------------------------------------------------------------
 // Refracted light (sec. 5.3, eq. 28): I_sea = L_sea (1 - F-bar).
 
-// A deep-water reflectance for callers without their own, dimensionless, per channel: the sea
-// colour (10, 40, 120) / 255 used in Bruneton et al.'s 2010 ocean demo, scaled by 0.1, i.e.
-// 0.4 %, 1.6 %, 4.7 %: the order of magnitude of clear open ocean, chosen by eye. Placeholder.
-const vec3 OCEAN_DEFAULT_DEEP_REFLECTANCE = vec3(10.0, 40.0, 120.0) / 255.0 * 0.1;
+// The default deep-water irradiance reflectance, dimensionless, per channel (the scene keys
+// ocean.deep_reflectance_r/g/b): the sea colour (10, 40, 120) / 255 of Bruneton et al.'s 2010
+// ocean demo scaled by 0.1 and rounded, 0.4 %, 1.6 %, 4.7 %: the order of magnitude of clear
+// open ocean (irradiance reflectances of 2-5 % in the blue, under 0.5 % in the red), chosen by
+// eye rather than from a water model.
+const vec3 OCEAN_DEFAULT_DEEP_REFLECTANCE = vec3(0.004, 0.016, 0.047);
 
 // L_sea, the radiance reaching the surface from the water body, W m^-2 sr^-1 nm^-1: diffuse and
 // proportional to the total sun and sky irradiance, as sec. 5.3 assumes; here a Lambertian

@@ -632,7 +632,8 @@ TEST(SceneKeys, ListsEveryKeyOnce) {
       "ocean.wind_direction", "ocean.spectrum",   "ocean.waves",
       "ocean.lambda_min",     "ocean.lambda_max", "ocean.seed",
       "ocean.n_min",          "ocean.n_max",      "ocean.grid_cell",
-      "ocean.fresnel_r",      "ocean.sky_filter", "sky.model",
+      "ocean.fresnel_r",      "ocean.sky_filter", "ocean.deep_reflectance_r",
+      "ocean.deep_reflectance_g", "ocean.deep_reflectance_b", "sky.model",
       "sky.exr"};
   std::set<std::string> seen;
   for (const auto& k : scene_keys()) {

@@ -74,6 +74,12 @@ struct OceanSettings {
   double n_max = 2.5;        // N_max, [0, 100]
   double grid_cell = 8.0;    // projected grid cell, pixels, [1, 64]
   double fresnel_r = 0.02;   // Fresnel reflectance at normal incidence (eq. 14), [0, 1]
+  // Irradiance reflectance of the water body just below the surface (L_sea = R E / pi, eq. 28),
+  // per channel (680, 550, 440 nm), [0, 1]: the defaults are clear open ocean's order of
+  // magnitude (see shaders/ocean/ross_brdf.glsl, OCEAN_DEFAULT_DEEP_REFLECTANCE).
+  double deep_reflectance_r = 0.004;
+  double deep_reflectance_g = 0.016;
+  double deep_reflectance_b = 0.047;
   // The sky reflection's filter: "texture_grad" (eq. 27) or "nine_samples" (sec. 7.2).
   std::string sky_filter = "texture_grad";
 };
