@@ -322,18 +322,35 @@ Number OceanEffectiveFresnel(IN(Number) cos_theta_v, IN(Number) view_slope_varia
                              IN(Number) fresnel_r) {
   Number sigma_v = sqrt(max(view_slope_variance, 0.0));
   Number x = 1.0 - clamp(cos_theta_v, 0.0, 1.0);
-  Number exponent = 5.0 * exp(-OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY * sigma_v);
+  // The exponent is held at 1e-6 or above: for sigma_v > 38 (far outside the fit's range, slope
+  // variances <= 1) 5 exp(-2.69 sigma_v) underflows to 0 in float (at 278 in double), and
+  // pow(0, 0) at normal incidence is undefined in GLSL (llvmpipe returns 0, C++ 1: a jump of
+  // the result by (1 - R) / (1 + 22.7 sigma_v^1.5) between the two). With the floor x^exponent
+  // is 0 at x = 0 for every sigma_v, continuous with its value at all smaller sigma_v.
+  Number exponent = max(5.0 * exp(-OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY * sigma_v), 1.0e-6);
   return fresnel_r + (1.0 - fresnel_r) * pow(x, exponent) /
          (1.0 + OCEAN_EFFECTIVE_FRESNEL_SCALE * sigma_v * sqrt(sigma_v));
 }
 
+// 1 + r_z (dimensionless), the denominator of the stereographic mapping, for a unit r. Near the
+// nadir (r_z -> -1) the sum 1 + r_z ~ eps^2 / 2 (eps the angle from the nadir) cancels: an error
+// of r_z's last bit (6e-8 in float, 1.1e-16 in double) becomes a relative error 2 ulp / eps^2 of
+// U (3 % in float at eps = 4e-3, measured by tests/gpu/numerics_test.cpp where r is computed
+// by a reflection). For r_z < 0 it is written (1 - r_z)(1 + r_z) / (1 - r_z) = (r_x^2 + r_y^2)
+// / (1 - r_z) (|r| = 1): no cancellation (1 - r_z >= 1), and r_x, r_y carry the direction with
+// a relative error ulp / eps only. Both forms are equal for a unit r and agree at r_z = 0.
+Number OceanStereographicDenominator(IN(vec3) r) {
+  return r.z >= 0.0 ? 1.0 + r.z : (r.x * r.x + r.y * r.y) / (1.0 - r.z);
+}
+
 // The stereographic sky-map coordinates U(r) = (r_x, r_y) / (1 + r_z) (dimensionless, sec. 5.2)
 // of the unit direction r in the sky map's frame (z up: the zenith maps to (0, 0), the horizon to
-// the unit circle, the lower hemisphere outside it). Near the nadir, where 1 + r_z <
-// 2 / OCEAN_SKY_MAP_MAX_RADIUS^2, the radius is held at OCEAN_SKY_MAP_MAX_RADIUS along
-// (r_x, r_y), and the nadir itself maps to (OCEAN_SKY_MAP_MAX_RADIUS, 0) (see that constant).
+// the unit circle, the lower hemisphere outside it), 1 + r_z from OceanStereographicDenominator
+// (stable near the nadir). Near the nadir, where 1 + r_z < 2 / OCEAN_SKY_MAP_MAX_RADIUS^2, the
+// radius is held at OCEAN_SKY_MAP_MAX_RADIUS along (r_x, r_y), and the nadir itself maps to
+// (OCEAN_SKY_MAP_MAX_RADIUS, 0) (see that constant).
 vec2 OceanStereographic(IN(vec3) r) {
-  Number d = 1.0 + r.z;
+  Number d = OceanStereographicDenominator(r);
   if (d >= 2.0 / (OCEAN_SKY_MAP_MAX_RADIUS * OCEAN_SKY_MAP_MAX_RADIUS)) {
     return vec2(r.x, r.y) / d;
   }
@@ -345,10 +362,11 @@ vec2 OceanStereographic(IN(vec3) r) {
 }
 
 // The derivative of U (OceanStereographic) along dr = dr/ds at r, for any parameter s:
-//   dU = (dr_x, dr_y) / d - (r_x, r_y) dr_z / d^2,  d = 1 + r_z,
+//   dU = (dr_x, dr_y) / d - (r_x, r_y) dr_z / d^2,  d = 1 + r_z (OceanStereographicDenominator),
 // with d held at 2 / OCEAN_SKY_MAP_MAX_RADIUS^2 or above (near the nadir: large but finite).
 vec2 OceanStereographicDerivative(IN(vec3) r, IN(vec3) dr) {
-  Number d = max(1.0 + r.z, 2.0 / (OCEAN_SKY_MAP_MAX_RADIUS * OCEAN_SKY_MAP_MAX_RADIUS));
+  Number d = max(OceanStereographicDenominator(r),
+                 2.0 / (OCEAN_SKY_MAP_MAX_RADIUS * OCEAN_SKY_MAP_MAX_RADIUS));
   return vec2(dr.x, dr.y) / d - vec2(r.x, r.y) * (dr.z / (d * d));
 }
 

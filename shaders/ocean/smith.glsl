@@ -38,32 +38,51 @@ const Number ERFC_AS_7_1_26_A3 = 1.421413741;
 const Number ERFC_AS_7_1_26_A4 = -1.453152027;
 const Number ERFC_AS_7_1_26_A5 = 1.061405429;
 
-// Lambda(a) is evaluated in three ranges. Writing Lambda = exp(-a^2) g(a) / 2 with
+// Lambda(a) is evaluated in four ranges. Writing Lambda = exp(-a^2) g(a) / 2 with
 // g(a) = 1 / (a sqrt(pi)) - erfcx(a) and erfcx(a) = exp(a^2) erfc(a) (the exp(-a^2) of both
-// terms factored out, so nothing underflows before the product):
+// terms factored out, so nothing underflows before the product). The printed form
+// (exp(-a^2) / (a sqrt(pi)) - erfc(a)) / 2 is never evaluated: its two terms agree to a
+// relative 1 / (2 a^2) for large a, so it keeps only the digits of erfc beyond that (with A&S
+// 7.1.26's absolute error of 1.5e-7 it is off by 3 % at a = 3 and by a factor 60 at a = 4;
+// tests/unit/ocean_numerics_test.cpp measures it). Each form below has no such cancellation:
 // - a < OCEAN_SMITH_SPLIT_A: erfcx from A&S 7.1.26's polynomial. Its absolute error on erfc,
 //   1.5e-7, is 7.5e-8 on Lambda, and Lambda >= Lambda(1.2) = 0.0109 here: relative error
-//   <= 7e-6 (measured against mpmath on a 0.02 grid: 2.6e-6). Above the split the polynomial is
-//   useless for Lambda: the cancellation in g grows as 2 a^2 and the polynomial's relative error
-//   on erfcx grows to 38 % as a -> inf (t P(t) -> a1 / (p a) = 0.778 / a instead of 0.564 / a).
-// - OCEAN_SMITH_SPLIT_A <= a < OCEAN_SMITH_MAX_A: Laplace's continued fraction
+//   <= 7e-6 (measured against mpmath on a 0.02 grid: 2.6e-6). Toward a = 0 the first term of g,
+//   1 / (a sqrt(pi)), dominates and the relative error falls as a. Above the split the
+//   polynomial is useless for Lambda: the cancellation in g grows as 2 a^2 and the polynomial's
+//   relative error on erfcx grows to 38 % as a -> inf (t P(t) -> a1 / (p a) = 0.778 / a instead
+//   of 0.564 / a).
+// - OCEAN_SMITH_SPLIT_A <= a < OCEAN_SMITH_ASYMPTOTIC_A: Laplace's continued fraction
 //   erfcx(a) = (1 / sqrt(pi)) / (a + (1/2) / (a + (2/2) / (a + (3/2) / (a + ...)))) (A&S 7.1.14).
 //   With r = (1/2) / (a + (2/2) / (a + ...)) (its tail, all terms positive),
 //   g = (1 / a - 1 / (a + r)) / sqrt(pi) = r / (sqrt(pi) a (a + r)): no cancellation at all.
 //   Truncated after OCEAN_SMITH_CONTINUED_FRACTION_TERMS terms (the last denominator's tail set
-//   to 0), its relative error is 3.1e-6 at a = 1.2, 1.4e-7 at 2, 4e-13 at 4 (mpmath). The worst
-//   over both ranges, measured by tests/unit/ross_brdf_test.cpp against long double: 3.0e-6.
-// - a >= OCEAN_SMITH_MAX_A: Lambda = 0. The asymptotic series,
-//   Lambda ~ exp(-a^2) / (2 sqrt(pi) a^3) (1 - 3 / (2 a^2) + ...), gives Lambda(6) = 3e-19,
-//   below double precision's epsilon relative to the 1 it is added to; it also covers the zenith
-//   (sin theta = 0, a = inf) without a division by 0.
+//   to 0), its relative error is 3.1e-6 at a = 1.2, 1.4e-7 at 2, 4e-13 at 4 (mpmath).
+// - OCEAN_SMITH_ASYMPTOTIC_A <= a < OCEAN_SMITH_MAX_A: the asymptotic series of erfcx (A&S
+//   7.1.23) with the leading 1 / (a sqrt(pi)) cancelled analytically, u = 1 / (2 a^2):
+//   g = u / (a sqrt(pi)) sum_m (-1)^m (2m + 1)!! u^m,
+//   Lambda = exp(-a^2) / (4 sqrt(pi) a^3) (1 - 3 u + 15 u^2 - 105 u^3 + ...),
+//   an alternating sum whose terms fall by (2m + 3) u <= 21 / 72 each up to the tenth and whose
+//   first correction is 3 u <= 4 %: it loses a few ulps at most, not 2 a^2 of them. Truncated
+//   after 10 terms, the remainder is below the first term left out, 13749310575 u^10 = 3.7e-9
+//   at a = 6 (the series of erfc is enveloping, A&S 7.1.24). Lambda used to be set to 0 here (it
+//   is below 1.5e-19 and only ever added to 1); it now keeps its relative accuracy, at the cost
+//   of an exp and ten multiply-adds, no loop.
+// - a >= OCEAN_SMITH_MAX_A: Lambda = 0, its correctly rounded value in double: Lambda(28) =
+//   exp(-784) / (4 sqrt(pi) 28^3) = 1e-345, below the smallest subnormal double (4.9e-324). (In
+//   float exp(-a^2) underflows from a = 9.4 on, so the GPU returns 0 there already.) It also
+//   covers the zenith (sin theta = 0, a = inf) without a division by 0.
+//   The worst relative error over the four ranges, measured by
+//   tests/unit/ocean_numerics_test.cpp against long double on a log grid from a = 1e-4 to 1e4:
+//   3.1e-6, at the split (docs/numerics.md).
 // - a < OCEAN_SMITH_MIN_A (grazing, cot theta < 1e-9 sqrt(2 sigma_w^2)): a is raised to it, so
 //   that Lambda <= 1 / (2 sqrt(pi) 1e-9) = 2.8e8 stays finite (also in single precision). Callers
 //   that need cos theta (1 + Lambda) at the horizon use OceanSmithFacingArea, which is exact
 //   there.
 const Number OCEAN_SMITH_SPLIT_A = 1.2;
 const int OCEAN_SMITH_CONTINUED_FRACTION_TERMS = 24;
-const Number OCEAN_SMITH_MAX_A = 6.0;
+const Number OCEAN_SMITH_ASYMPTOTIC_A = 6.0;
+const Number OCEAN_SMITH_MAX_A = 28.0;
 const Number OCEAN_SMITH_MIN_A = 1.0e-9;
 
 // exp(x^2) erfc(x) (dimensionless) for x >= 0, from A&S 7.1.26's polynomial: accurate only in
@@ -83,7 +102,7 @@ Number OceanErfc(IN(Number) x) {
 }
 
 // g(a) = 1 / (a sqrt(pi)) - exp(a^2) erfc(a) = 2 exp(a^2) Lambda(a), for
-// OCEAN_SMITH_SPLIT_A <= a < OCEAN_SMITH_MAX_A, from the continued fraction's tail r (see
+// OCEAN_SMITH_SPLIT_A <= a < OCEAN_SMITH_ASYMPTOTIC_A, from the continued fraction's tail r (see
 // OCEAN_SMITH_SPLIT_A), evaluated from its last term up.
 Number OceanSmithScaledLambdaTail(IN(Number) a) {
   Number tail = 0.0;
@@ -93,17 +112,32 @@ Number OceanSmithScaledLambdaTail(IN(Number) a) {
   return tail / (sqrt(PI) * a * (a + tail));
 }
 
+// g(a) = 2 exp(a^2) Lambda(a) for a >= OCEAN_SMITH_ASYMPTOTIC_A, from the asymptotic series of
+// erfcx with its leading term cancelled analytically (see OCEAN_SMITH_SPLIT_A): u = 1 / (2 a^2),
+// g = u / (a sqrt(pi)) (1 - 3 u + 15 u^2 - ... - 654729075 u^9), the coefficients (2m + 1)!!,
+// summed by Horner's rule (every partial sum is positive and close to its first term).
+Number OceanSmithScaledLambdaAsymptotic(IN(Number) a) {
+  Number u = 0.5 / (a * a);
+  Number series = 1.0 - u * (3.0 - u * (15.0 - u * (105.0 - u * (945.0 - u * (10395.0 -
+                  u * (135135.0 - u * (2027025.0 - u * (34459425.0 - u * 654729075.0))))))));
+  return u * series / (sqrt(PI) * a);
+}
+
 // g(a) = 2 exp(a^2) Lambda(a) (dimensionless) for OCEAN_SMITH_MIN_A <= a < OCEAN_SMITH_MAX_A:
-// the polynomial below the split, the continued fraction above.
+// the polynomial below the split, the continued fraction above, the asymptotic series from
+// OCEAN_SMITH_ASYMPTOTIC_A on.
 Number OceanSmithScaledLambda(IN(Number) a) {
-  return a < OCEAN_SMITH_SPLIT_A ? 1.0 / (a * sqrt(PI)) - OceanScaledErfcPolynomial(a) :
-                                   OceanSmithScaledLambdaTail(a);
+  if (a < OCEAN_SMITH_SPLIT_A) {
+    return 1.0 / (a * sqrt(PI)) - OceanScaledErfcPolynomial(a);
+  }
+  return a < OCEAN_SMITH_ASYMPTOTIC_A ? OceanSmithScaledLambdaTail(a) :
+                                        OceanSmithScaledLambdaAsymptotic(a);
 }
 
 // a = cos theta / sigma_sin (dimensionless, eq. 9 corrected), for cos theta = cos_theta (clamped
 // to [0, 1]) and sigma_sin = sqrt(2 sigma_w^2) sin theta >= 0, held in [OCEAN_SMITH_MIN_A,
 // OCEAN_SMITH_MAX_A] without ever dividing by 0: OCEAN_SMITH_MAX_A (Lambda = 0) at the zenith
-// and wherever Lambda < 3e-19, OCEAN_SMITH_MIN_A at the horizon.
+// and wherever Lambda < 1e-345, OCEAN_SMITH_MIN_A at the horizon.
 Number OceanSmithA(IN(Number) cos_theta, IN(Number) sigma_sin) {
   Number cos_t = clamp(cos_theta, 0.0, 1.0);
   if (cos_t >= OCEAN_SMITH_MAX_A * sigma_sin) {
@@ -113,8 +147,9 @@ Number OceanSmithA(IN(Number) cos_theta, IN(Number) sigma_sin) {
 }
 
 // Smith's Lambda(a) (dimensionless, Bruneton et al. 2010 eq. 8) for a >= 0: 0 for
-// a >= OCEAN_SMITH_MAX_A (the zenith), at most 2.8e8 (a raised to OCEAN_SMITH_MIN_A) toward the
-// horizon, relative error <= 3e-6 (see OCEAN_SMITH_SPLIT_A).
+// a >= OCEAN_SMITH_MAX_A (the zenith; there Lambda < 1e-345), at most 2.8e8 (a raised to
+// OCEAN_SMITH_MIN_A) toward the horizon, relative error <= 3e-6 wherever the result is a normal
+// double (see OCEAN_SMITH_SPLIT_A).
 Number OceanSmithLambda(IN(Number) a) {
   if (a >= OCEAN_SMITH_MAX_A) {
     return 0.0;
@@ -136,7 +171,7 @@ Number OceanSmithCosLambda(IN(Number) cos_theta, IN(Number) sigma_sin) {
   Number a = cos_t / sigma_sin;  // sigma_sin > 0 here.
   Number cos_lambda_scaled = a < OCEAN_SMITH_SPLIT_A ?
       sigma_sin / sqrt(PI) - cos_t * OceanScaledErfcPolynomial(a) :
-      cos_t * OceanSmithScaledLambdaTail(a);
+      cos_t * OceanSmithScaledLambda(a);
   return 0.5 * exp(-a * a) * cos_lambda_scaled;
 }
 

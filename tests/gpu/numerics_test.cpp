@@ -1,0 +1,449 @@
+// The ocean's shared GLSL functions in float (on the GPU) against their double-precision C++
+// references (the same source compiled as C++), over the stiff sweeps of
+// tests/unit/ocean_numerics_test.cpp (issue 7, point 2): Lambda(a) for a from 1e-4 to 1e4, the
+// horizon, 1 - sqrt(1 - x), sigma -> 0, theta_v -> 90 deg, the nadir of the stereographic
+// mapping. Each input is rounded to float first and the reference is evaluated on exactly that
+// float, so the errors measured are those of float arithmetic (and of the driver's exp, pow,
+// sqrt), not of the inputs' rounding. Prints the table of docs/numerics.md:
+//   THALASSA_TEST_BACKEND=egl build/tests/gpu_tests --gtest_filter='GpuNumerics*'
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "ross_brdf_reference.hpp"
+#include "test_support.hpp"
+#include "thalassa/engine/gl/hdr_target.hpp"
+#include "thalassa/engine/gl/shader_library.hpp"
+#include "trochoids_reference.hpp"
+
+namespace thalassa {
+namespace {
+
+constexpr int kWidth = 256;  // pixels per row of a sweep
+
+// Below this magnitude a reference counts as having underflowed in float (llvmpipe, like most
+// GPUs, flushes float subnormals, below 1.2e-38, to 0): the GPU must return a value as small.
+constexpr double kFloatUnderflow = 1e-36;
+
+double Relative(double gpu, double expected, double floor) {
+  return std::abs(gpu - expected) / std::max(std::abs(expected), floor);
+}
+
+// The rows of the table: function, region, worst relative error, where, and the bound asserted.
+struct TableRow {
+  std::string function, region;
+  double worst = 0.0;
+  std::string where;
+  double bound = 0.0;
+  int samples = 0;
+};
+
+std::vector<TableRow>& Table() {
+  static std::vector<TableRow> table;
+  return table;
+}
+
+class GpuNumericsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    context_ = test::make_test_context();
+    library_ = std::make_unique<gl::ShaderLibrary>(
+        std::vector<std::filesystem::path>{THALASSA_SOURCE_DIR "/tests/gpu/shaders"});
+    vao_ = gl::make_vertex_array();
+  }
+
+  static void TearDownTestSuite() {
+    std::printf("\n| function | region | samples | worst relative error | at | asserted |\n");
+    std::printf("|---|---|---|---|---|---|\n");
+    for (const TableRow& row : Table()) {
+      std::printf("| %s | %s | %d | %.2g | %s | %.0e |\n", row.function.c_str(), row.region.c_str(),
+                  row.samples, row.worst, row.where.c_str(), row.bound);
+    }
+    Table().clear();
+  }
+
+  // Evaluates FUNCTION of tests/gpu/shaders/numerics.frag on one input per pixel; `uniforms`
+  // sets the program's uniforms. Returns one vec4 per input, in order.
+  std::vector<glm::vec4> evaluate(int function, const std::vector<glm::vec4>& inputs,
+                                  const std::function<void(GLuint)>& uniforms = {}) {
+    const int height = int((inputs.size() + kWidth - 1) / kWidth);
+    std::vector<glm::vec4> texels(std::size_t(kWidth) * height, glm::vec4(0.5f));
+    std::copy(inputs.begin(), inputs.end(), texels.begin());
+    gl::Texture input = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(input.get(), 1, GL_RGBA32F, kWidth, height);
+    glTextureSubImage2D(input.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
+    gl::HdrTarget target(kWidth, height);
+    const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
+                                              .fragment = "numerics.frag",
+                                              .defines = {{"FUNCTION", std::to_string(function)}}});
+    if (uniforms) uniforms(program);
+    target.begin();
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(program);
+    glBindTextureUnit(0, input.get());
+    glBindVertexArray(vao_.get());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    const std::vector<float> top_down = target.read_rgba_top_down();
+    std::vector<glm::vec4> out(inputs.size());
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const std::size_t x = i % kWidth, y = i / kWidth;
+      const float* t = &top_down[((height - 1 - y) * kWidth + x) * 4];
+      out[i] = glm::vec4(t[0], t[1], t[2], t[3]);
+    }
+    return out;
+  }
+
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<gl::ShaderLibrary> library_;
+  gl::VertexArray vao_;
+};
+
+// Accumulates one row of the table: feed (gpu, expected, floor, description) per sample; every
+// GPU value must be finite; the row's worst error must stay within `bound`.
+class Region {
+ public:
+  Region(std::string function, std::string region, double bound) : index_(Table().size()) {
+    row_.function = std::move(function);
+    row_.region = std::move(region);
+    row_.bound = bound;
+    Table().push_back(row_);  // its place in the table, in the order of declaration
+  }
+  ~Region() {
+    EXPECT_LE(row_.worst, row_.bound)
+        << row_.function << ", " << row_.region << " at " << row_.where;
+    Table()[index_] = row_;
+  }
+  void add(double error, const std::string& where) {
+    ++row_.samples;
+    EXPECT_TRUE(std::isfinite(error)) << row_.function << ", " << row_.region << " at " << where;
+    if (!(error <= row_.worst)) {
+      row_.worst = error;
+      row_.where = where;
+    }
+  }
+
+ private:
+  std::size_t index_;
+  TableRow row_;
+};
+
+// v rounded to float, componentwise: the value the GPU sees in a float uniform or texel.
+// (Through a volatile: GCC 12 at -O3 was seen to fold double(float(x)) to x for some x, which
+// left the reference with unrounded inputs.)
+double RoundToFloat(double x) {
+  volatile float f = static_cast<float>(x);
+  return f;
+}
+glm::dvec3 RoundToFloat(const glm::dvec3& v) {
+  return glm::dvec3(RoundToFloat(v.x), RoundToFloat(v.y), RoundToFloat(v.z));
+}
+
+std::string Format(const char* format, double x) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), format, x);
+  return buffer;
+}
+
+TEST_F(GpuNumericsTest, SmithLambda) {
+  // a log-spaced from 1e-4 to 1e4, 50 points per decade, plus both sides of each boundary.
+  std::vector<glm::vec4> inputs;
+  for (int i = 0; i <= 400; ++i)
+    inputs.emplace_back(float(std::pow(10.0, -4.0 + i / 50.0)), 0, 0, 0);
+  for (double edge : {1.2, 6.0, 28.0}) {
+    inputs.emplace_back(float(edge), 0, 0, 0);
+    inputs.emplace_back(std::nextafter(float(edge), 0.0f), 0, 0, 0);
+  }
+  const auto gpu = evaluate(1, inputs);
+  Region small("Lambda(a)", "a in [1e-4, 1.2): A&S polynomial", 1e-5);
+  Region middle("Lambda(a)", "a in [1.2, 6): continued fraction", 1e-5);
+  Region large("Lambda(a)", "a in [6, 8.7): asymptotic series", 5e-5);
+  Region underflow("Lambda(a)", "a in [8.7, 1e4], reference < 1e-36: abs(gpu), absolute", 1e-36);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const double a = inputs[i].x;
+    const double expected = glsl::OceanSmithLambda(a);
+    const std::string where = Format("a = %.4g", a);
+    if (expected < kFloatUnderflow) {
+      underflow.add(std::abs(double(gpu[i].x)), where);
+    } else {
+      (a < 1.2   ? small
+       : a < 6.0 ? middle
+                 : large)
+          .add(Relative(gpu[i].x, expected, kFloatUnderflow), where);
+    }
+  }
+}
+
+TEST_F(GpuNumericsTest, SmithCosLambdaToTheHorizon) {
+  // cos theta Lambda and cos theta (1 + Lambda) for cos theta from 1 down to 1e-10 and 0, for a
+  // calm sea's sigma_sin (1e-3), a rough one's (0.1) and the largest (1).
+  std::vector<glm::vec4> inputs;
+  for (float sigma_sin : {1e-3f, 0.1f, 1.0f}) {
+    inputs.emplace_back(0.0f, sigma_sin, 0, 0);
+    for (int i = 0; i <= 200; ++i)
+      inputs.emplace_back(float(std::pow(10.0, -i / 20.0)), sigma_sin, 0, 0);
+  }
+  const auto gpu = evaluate(2, inputs);
+  Region grazing("cos Lambda, facing area", "a < 1e-3 (grazing, to cos theta = 0)", 1e-5);
+  Region small("cos Lambda, facing area", "a in [1e-3, 1.2)", 1e-5);
+  Region middle("cos Lambda, facing area", "a in [1.2, 6)", 1e-5);
+  Region large("cos Lambda, facing area", "a >= 6 (normal float)", 5e-5);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const double cos_theta = inputs[i].x, sigma_sin = inputs[i].y;
+    const double a = cos_theta / sigma_sin;
+    Region& region = a < 1e-3 ? grazing : a < 1.2 ? small : a < 6.0 ? middle : large;
+    const std::string where = Format("a = %.3g", a) + Format(", sigma_sin %g", sigma_sin);
+    const double cos_lambda = glsl::OceanSmithCosLambda(cos_theta, sigma_sin);
+    if (cos_lambda >= kFloatUnderflow) {
+      region.add(Relative(gpu[i].x, cos_lambda, kFloatUnderflow), where);
+    } else {
+      EXPECT_LE(std::abs(gpu[i].x), kFloatUnderflow) << where;
+    }
+    region.add(Relative(gpu[i].y, glsl::OceanSmithFacingArea(cos_theta, sigma_sin), 0.0), where);
+  }
+}
+
+TEST_F(GpuNumericsTest, TrochoidSlopeVariance) {
+  // 1 - sqrt(1 - s^2): s from 1e-8 (variance 5e-17) to 0.5, and toward the cusp s = 1 - 2^-k.
+  std::vector<glm::vec4> inputs;
+  for (int i = 0; i <= 160; ++i) {
+    const float s = float(std::pow(10.0, -8.0 + i / 20.0));
+    if (s <= 0.5f) inputs.emplace_back(s, 0, 0, 0);
+  }
+  for (int k = 1; k <= 24; ++k) inputs.emplace_back(float(1.0 - std::ldexp(1.0, -k)), 0, 0, 0);
+  const auto gpu = evaluate(3, inputs);
+  Region small("trochoid variance 1 - sqrt(1 - s^2)", "s in [1e-8, 0.5]", 1e-6);
+  Region cusp("trochoid variance 1 - sqrt(1 - s^2)", "s = 1 - 2^-k, k = 1..24 (the cusp)", 1e-6);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const double s = inputs[i].x;
+    (s <= 0.5 ? small : cusp)
+        .add(Relative(gpu[i].x, glsl::TrochoidSlopeVariance(s), 0.0), Format("s = %.9g", s));
+  }
+}
+
+// A unit vector at angle alpha from m, toward azimuth psi about it.
+glm::dvec3 Around(const glm::dvec3& m, double alpha, double psi) {
+  const glm::dvec3 helper = std::abs(m.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 t1 = glm::normalize(glm::cross(helper, m));
+  const glm::dvec3 t2 = glm::cross(m, t1);
+  return std::cos(alpha) * m + std::sin(alpha) * (std::cos(psi) * t1 + std::sin(psi) * t2);
+}
+
+TEST_F(GpuNumericsTest, ReflectedSunAndBrdfAsSigmaVanishes) {
+  // The glint of a sun at 30 and 80 deg, for slope variances from 1e-2 to 0 (the sun term's
+  // clamp holds them at 1.35e-6): views within 4 lobe widths of the mirror direction. Errors are
+  // relative to max(|reference|, 1e-6 x the sweep's peak): the far tail's 1e-40 are not compared.
+  for (double zenith : {30.0, 80.0}) {
+    const glm::dvec3 l = RoundToFloat(glm::dvec3(std::sin(zenith * M_PI / 180) * std::cos(0.4),
+                                                 std::sin(zenith * M_PI / 180) * std::sin(0.4),
+                                                 std::cos(zenith * M_PI / 180)));
+    const glm::dvec3 m(-l.x, -l.y, l.z);
+    for (double variance : {1e-2, 1e-4, 1e-6, 1e-8, 0.0}) {
+      const glm::dvec2 s2(RoundToFloat(variance), RoundToFloat(0.5 * variance));
+      const double lobe = 2.0 * std::sqrt(std::max(variance, 1.35e-6));
+      std::vector<glm::vec4> inputs;
+      for (int i = 0; i < 64; ++i) {
+        for (int j = 0; j < 16; ++j) {
+          const glm::vec3 v(Around(m, 4.0 * lobe * i / 63.0, 2.0 * M_PI * j / 16.0));
+          inputs.emplace_back(v.x, v.y, v.z, 0.0f);
+        }
+      }
+      const auto gpu = evaluate(4, inputs, [&](GLuint program) {
+        glProgramUniform3f(program, glGetUniformLocation(program, "light"), l.x, l.y, l.z);
+        glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"), s2.x, s2.y);
+      });
+      double peak_sun = 0.0, peak_brdf = 0.0;
+      for (const glm::vec4& v : inputs) {
+        peak_sun = std::max(peak_sun, glsl::OceanReflectedSun(glm::dvec3(v), l, s2, 0.02));
+        peak_brdf = std::max(peak_brdf, glsl::OceanRossBrdf(glm::dvec3(v), l, s2, 0.02));
+      }
+      const std::string region =
+          Format("theta_l %.0f deg, ", zenith) + Format("sigma^2 = %g", variance);
+      Region sun("reflected sun (eq. 15)", region, 2e-5);
+      Region brdf("Ross BRDF (eq. 13)", region, 2e-5);
+      for (std::size_t i = 0; i < inputs.size(); ++i) {
+        const glm::dvec3 v(inputs[i]);
+        const std::string where = Format("%.3g lobe widths", std::acos(glm::dot(v, m)) / lobe);
+        sun.add(Relative(gpu[i].x, glsl::OceanReflectedSun(v, l, s2, 0.02), 1e-6 * peak_sun),
+                where);
+        if (variance > 0.0) {  // at sigma = 0 the unclamped BRDF is a Dirac (the floor's 1e-10)
+          brdf.add(Relative(gpu[i].y, glsl::OceanRossBrdf(v, l, s2, 0.02), 1e-6 * peak_brdf),
+                   where);
+        }
+      }
+    }
+  }
+}
+
+TEST_F(GpuNumericsTest, GrazingView) {
+  // theta_v -> 90 deg: cos theta_v = 10^-k (k = 0..10) and 0, toward the glint of a sun at 80
+  // deg and across it, for a 10 m/s sea's slope variances.
+  const glm::dvec3 l =
+      RoundToFloat(glm::dvec3(-std::sin(80 * M_PI / 180), 0.0, std::cos(80 * M_PI / 180)));
+  const glm::dvec2 s2(glm::vec2(0.02f, 0.01f));
+  std::vector<glm::vec4> inputs;
+  for (double azimuth : {0.0, 10.0, 45.0, 90.0}) {
+    for (int k = 0; k <= 41; ++k) {
+      const double z = k == 41 ? 0.0 : std::pow(10.0, -k / 4.0);
+      const double horizontal = std::sqrt(1.0 - z * z);
+      inputs.emplace_back(horizontal * std::cos(azimuth * M_PI / 180),
+                          horizontal * std::sin(azimuth * M_PI / 180), z, 0.0f);
+    }
+  }
+  const auto gpu = evaluate(4, inputs, [&](GLuint program) {
+    glProgramUniform3f(program, glGetUniformLocation(program, "light"), l.x, l.y, l.z);
+    glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"), s2.x, s2.y);
+  });
+  const auto fresnel_gpu = evaluate(5, [&] {
+    std::vector<glm::vec4> fresnel_inputs;
+    for (const glm::vec4& v : inputs)
+      fresnel_inputs.emplace_back(v.z, float(glsl::OceanSlopeVarianceToward(glm::dvec3(v), s2)),
+                                  0.0f, 0.0f);
+    return fresnel_inputs;
+  }());
+  Region sun("reflected sun (eq. 15)", "theta_v -> 90 deg (cos 1 .. 1e-10, 0)", 2e-5);
+  Region brdf("Ross BRDF (eq. 13)", "theta_v -> 90 deg (cos 1 .. 1e-10, 0)", 2e-5);
+  Region fresnel("effective Fresnel (eq. 26)", "theta_v -> 90 deg (cos 1 .. 1e-10, 0)", 1e-5);
+  double peak_sun = 0.0, peak_brdf = 0.0;
+  for (const glm::vec4& v : inputs) {
+    peak_sun = std::max(peak_sun, glsl::OceanReflectedSun(glm::dvec3(v), l, s2, 0.02));
+    peak_brdf = std::max(peak_brdf, glsl::OceanRossBrdf(glm::dvec3(v), l, s2, 0.02));
+  }
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::dvec3 v(inputs[i]);
+    const std::string where = Format("cos theta_v = %.3g", v.z) +
+                              Format(", azimuth %.0f", std::atan2(v.y, v.x) * 180 / M_PI);
+    sun.add(Relative(gpu[i].x, glsl::OceanReflectedSun(v, l, s2, 0.02), 1e-6 * peak_sun), where);
+    brdf.add(Relative(gpu[i].y, glsl::OceanRossBrdf(v, l, s2, 0.02), 1e-6 * peak_brdf), where);
+    const double view_variance = double(float(glsl::OceanSlopeVarianceToward(v, s2)));
+    fresnel.add(
+        Relative(fresnel_gpu[i].x, glsl::OceanEffectiveFresnel(v.z, view_variance, 0.02), 0.0),
+        where);
+  }
+}
+
+TEST_F(GpuNumericsTest, EffectiveFresnel) {
+  // Eq. 26 for sigma_v^2 from 1 down to 1e-14 and 0 (-> Schlick), cos theta_v from 1 to 1e-9
+  // and 0 (grazing); and beyond the documented range, sigma_v^2 = 1e6, where the exponent
+  // 5 exp(-2.69 sigma_v) underflows (pow(0, 0) at normal incidence).
+  std::vector<glm::vec4> inputs;
+  std::vector<float> cosines = {1.0f, 0.0f};
+  for (int k = 0; k <= 36; ++k) cosines.push_back(float(std::pow(10.0, -k / 4.0)));
+  cosines.push_back(0.99999f);
+  for (float cos_theta : cosines) {
+    inputs.emplace_back(cos_theta, 0.0f, 0, 0);
+    for (int k = 0; k <= 14; ++k) inputs.emplace_back(cos_theta, float(std::pow(10.0, -k)), 0, 0);
+    inputs.emplace_back(cos_theta, 1e6f, 0, 0);
+  }
+  const auto gpu = evaluate(5, inputs);
+  Region to_schlick("effective Fresnel (eq. 26)", "sigma_v^2 <= 1e-6 (-> Schlick)", 1e-5);
+  Region grazing("effective Fresnel (eq. 26)", "cos theta_v <= 1e-3, sigma_v^2 > 1e-6", 1e-5);
+  Region other("effective Fresnel (eq. 26)", "elsewhere, sigma_v^2 in (1e-6, 1]", 1e-5);
+  Region extreme("effective Fresnel (eq. 26)", "sigma_v^2 = 1e6 (out of range)", 1e-5);
+  Region schlick("Schlick (eq. 14)", "cos theta_v from 1 to 0", 1e-5);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const double cos_theta = inputs[i].x, variance = inputs[i].y;
+    const std::string where =
+        Format("cos theta_v = %.3g", cos_theta) + Format(", sigma_v^2 = %g", variance);
+    const double error =
+        Relative(gpu[i].x, glsl::OceanEffectiveFresnel(cos_theta, variance, 0.02), 0.0);
+    (variance > 1.0      ? extreme
+     : variance <= 1e-6  ? to_schlick
+     : cos_theta <= 1e-3 ? grazing
+                         : other)
+        .add(error, where);
+    schlick.add(Relative(gpu[i].y, glsl::OceanSchlickFresnel(cos_theta, 0.02), 0.0), where);
+  }
+}
+
+TEST_F(GpuNumericsTest, StereographicMappingNearTheNadir) {
+  // r at a distance eps from the nadir, eps = 2^-k from 1 rad to 1e-6 rad (the radius cap of
+  // OCEAN_SKY_MAP_MAX_RADIUS = 1000 is at eps = 2e-3); U(r) and its derivative along a fixed dr.
+  const glm::dvec3 dr = RoundToFloat(glm::dvec3(0.3, -0.5, 0.2));
+  std::vector<glm::vec4> inputs;
+  std::vector<double> eps;
+  for (int k = 0; k <= 20; ++k) {
+    for (double azimuth : {0.1, 1.3, 2.9, 4.4}) {
+      const double e = std::ldexp(1.0, -k);
+      inputs.emplace_back(std::sin(e) * std::cos(azimuth), std::sin(e) * std::sin(azimuth),
+                          -std::cos(e), 0.0f);
+      eps.push_back(e);
+    }
+  }
+  const auto gpu = evaluate(6, inputs, [&](GLuint program) {
+    glProgramUniform3f(program, glGetUniformLocation(program, "dr"), dr.x, dr.y, dr.z);
+  });
+  Region far("stereographic U and dU/ds, r given", "nadir distance >= 0.1 rad", 1e-5);
+  Region near("stereographic U and dU/ds, r given", "nadir distance in [2e-3, 0.1) rad", 1e-5);
+  Region cap("stereographic U and dU/ds, r given", "nadir distance < 2e-3 rad (radius cap)", 1e-5);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::dvec3 r(inputs[i]);
+    const glm::dvec2 u = glsl::OceanStereographic(r);
+    const glm::dvec2 du = glsl::OceanStereographicDerivative(r, dr);
+    Region& region = eps[i] >= 0.1 ? far : eps[i] >= 2e-3 ? near : cap;
+    const std::string where = Format("eps = %.3g rad", eps[i]);
+    region.add(glm::length(glm::dvec2(gpu[i].x, gpu[i].y) - u) / glm::length(u), where);
+    region.add(glm::length(glm::dvec2(gpu[i].z, gpu[i].w) - du) / glm::length(du), where);
+  }
+}
+
+TEST_F(GpuNumericsTest, SkyMapCoordinatesNearTheNadir) {
+  // Algorithm 5.1's u(v, 0) and du/dzeta for a steep facet (normal 56 deg from the zenith) seen
+  // from behind, so that the reflected ray r = 2 (v.n) n - v, computed in float, reaches the
+  // nadir: there 1 + r_z cancels, and r_z's rounding (6e-8) is amplified by 2 / eps^2 unless
+  // 1 + r_z is computed from r_x, r_y (ross_brdf.glsl, OceanStereographicDenominator).
+  const glm::dvec3 n = RoundToFloat(glm::normalize(glm::dvec3(0.5, 0.6, 0.55)));
+  const glm::dvec3 t_x = RoundToFloat(glm::normalize(glm::cross(glm::dvec3(0, 0, 1), n)));
+  const glm::dvec3 t_y = RoundToFloat(glm::cross(n, t_x));
+  std::vector<glm::vec4> inputs;
+  std::vector<double> eps;
+  for (int k = 0; k <= 20; ++k) {
+    for (double azimuth : {0.1, 1.3, 2.9, 4.4}) {
+      const double e = std::ldexp(1.0, -k);
+      const glm::dvec3 r(std::sin(e) * std::cos(azimuth), std::sin(e) * std::sin(azimuth),
+                         -std::cos(e));
+      const glm::dvec3 v = 2.0 * glm::dot(r, n) * n - r;  // the reflection is an involution
+      inputs.emplace_back(v.x, v.y, v.z, 0.0f);
+      eps.push_back(e);
+    }
+  }
+  const auto uniforms = [&](GLuint program) {
+    glProgramUniform3f(program, glGetUniformLocation(program, "frame_x"), t_x.x, t_x.y, t_x.z);
+    glProgramUniform3f(program, glGetUniformLocation(program, "frame_y"), t_y.x, t_y.y, t_y.z);
+    glProgramUniform3f(program, glGetUniformLocation(program, "frame_n"), n.x, n.y, n.z);
+  };
+  const auto gpu_x = evaluate(7, inputs, uniforms);
+  const auto gpu_y = evaluate(8, inputs, uniforms);
+  // Bound: float's 6e-8 on r_x, r_y over eps (3e-5 at eps = 2e-3) with a margin; the form
+  // 1 + r_z gave 3.6e-2 at eps = 3.9e-3.
+  Region far("sky-map u0, du/dzeta (r computed)", "nadir distance >= 0.1 rad", 2e-4);
+  Region near("sky-map u0, du/dzeta (r computed)", "nadir distance in [2e-3, 0.1) rad", 2e-4);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::dvec3 v(inputs[i]);
+    glm::dvec2 u0, du_x, du_y;
+    glsl::OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
+    if (eps[i] < 2e-3) {
+      // Within the cap the direction of (r_x, r_y) is itself ill-conditioned (1e-7 / eps in
+      // float): only finite values and the cap's radius are asked for.
+      EXPECT_NEAR(std::hypot(gpu_x[i].x, gpu_x[i].y), 1000.0, 1e-3) << eps[i];
+      EXPECT_TRUE(std::isfinite(gpu_x[i].z) && std::isfinite(gpu_x[i].w) &&
+                  std::isfinite(gpu_y[i].x) && std::isfinite(gpu_y[i].y));
+      continue;
+    }
+    Region& region = eps[i] >= 0.1 ? far : near;
+    const std::string where = Format("eps = %.3g rad", eps[i]);
+    region.add(glm::length(glm::dvec2(gpu_x[i].x, gpu_x[i].y) - u0) / glm::length(u0), where);
+    region.add(glm::length(glm::dvec2(gpu_x[i].z, gpu_x[i].w) - du_x) / glm::length(du_x), where);
+    region.add(glm::length(glm::dvec2(gpu_y[i].x, gpu_y[i].y) - du_y) / glm::length(du_y), where);
+  }
+}
+
+}  // namespace
+}  // namespace thalassa

@@ -1,0 +1,58 @@
+// Evaluates the ocean's shared GLSL functions in float over the stiff sweeps of
+// tests/gpu/numerics_test.cpp, one input per pixel, for comparison with their double-precision
+// C++ references (the same source compiled as C++). Texel (x, y) of `inputs` holds the four
+// inputs of the pixel (exactly the floats the CPU reference is given); uniforms hold what is
+// common to a sweep (a light direction, slope variances, a tangent frame), also as floats.
+#include "common/definitions.glsl"
+#include "ocean/ross_brdf.glsl"
+#include "ocean/trochoids.glsl"
+
+layout(binding = 0) uniform sampler2D inputs;
+uniform vec3 light;           // unit, tangent frame (FUNCTION 4)
+uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame (FUNCTION 4)
+uniform vec3 frame_x;         // t_x, t_y, n: the tangent frame in the sky map's frame
+uniform vec3 frame_y;         // (FUNCTION 7 and 8)
+uniform vec3 frame_n;
+uniform vec3 dr;              // a direction derivative (FUNCTION 6)
+layout(location = 0) out vec4 result;
+
+void main() {
+  const vec4 p = texelFetch(inputs, ivec2(gl_FragCoord.xy), 0);
+#if FUNCTION == 1
+  // Smith's Lambda(a), a = p.x.
+  result = vec4(OceanSmithLambda(p.x), 0.0, 0.0, 0.0);
+#elif FUNCTION == 2
+  // cos theta Lambda and the facing area, cos theta = p.x, sigma_sin = p.y.
+  result = vec4(OceanSmithCosLambda(p.x, p.y), OceanSmithFacingArea(p.x, p.y), 0.0, 0.0);
+#elif FUNCTION == 3
+  // The trochoid's slope variance 1 - sqrt(1 - s^2), s = p.x.
+  result = vec4(TrochoidSlopeVariance(p.x), 0.0, 0.0, 0.0);
+#elif FUNCTION == 4
+  // The reflected sun (eq. 15) and the BRDF (eq. 13), v = p.xyz.
+  const vec3 v = vec3(p.x, p.y, p.z);
+  result = vec4(OceanReflectedSun(v, light, slope_variance, 0.02),
+                OceanRossBrdf(v, light, slope_variance, 0.02), 0.0, 0.0);
+#elif FUNCTION == 5
+  // The effective Fresnel (eq. 26) and Schlick's (eq. 14), cos theta_v = p.x, sigma_v^2 = p.y.
+  result = vec4(OceanEffectiveFresnel(p.x, p.y, 0.02), OceanSchlickFresnel(p.x, 0.02), 0.0, 0.0);
+#elif FUNCTION == 6
+  // The stereographic mapping and its derivative along dr, r = p.xyz.
+  const vec3 r = vec3(p.x, p.y, p.z);
+  const vec2 u = OceanStereographic(r);
+  const vec2 du = OceanStereographicDerivative(r, dr);
+  result = vec4(u.x, u.y, du.x, du.y);
+#elif FUNCTION == 7 || FUNCTION == 8
+  // Algorithm 5.1's sky-map coordinates u0 and their derivatives (7: u0 and du/dzeta_x, 8:
+  // du/dzeta_y), v = p.xyz, the reflected ray computed in float.
+  const vec3 v = vec3(p.x, p.y, p.z);
+  vec2 u0;
+  vec2 du_x;
+  vec2 du_y;
+  OceanSkyMapGradients(v, frame_x, frame_y, frame_n, u0, du_x, du_y);
+#if FUNCTION == 7
+  result = vec4(u0.x, u0.y, du_x.x, du_x.y);
+#else
+  result = vec4(du_y.x, du_y.y, 0.0, 0.0);
+#endif
+#endif
+}
