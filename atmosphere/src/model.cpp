@@ -10,6 +10,7 @@
 #include <sstream>
 #include <thread>
 
+#include "model_cache.hpp"
 #include "model_tables.hpp"
 
 namespace thalassa::atmosphere {
@@ -77,6 +78,19 @@ bool read_table(std::ifstream& in, Table& table) {
   return true;
 }
 
+}  // namespace
+
+std::string cache_key(const AtmosphereParameters& parameters) {
+  return parameters.key() + table_layout();
+}
+
+std::string cache_file_name(const std::string& key) {
+  char name[64];
+  std::snprintf(name, sizeof name, "atmosphere-%016llx.bin",
+                static_cast<unsigned long long>(fnv1a(key)));
+  return name;
+}
+
 bool load_cache(const std::string& path, const std::string& key, ModelTables& tables) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return false;
@@ -138,6 +152,8 @@ std::string store_cache(const std::string& path, const std::string& key,
   return {};
 }
 
+namespace {
+
 glsl::vec3 dv(const glm::dvec3& v) { return glsl::vec3(v.x, v.y, v.z); }
 
 }  // namespace
@@ -163,13 +179,10 @@ std::shared_ptr<const AtmosphereModel> AtmosphereModel::create(
   s.parameters = parameters;
   s.atmosphere = to_glsl(parameters);
 
-  const std::string key = parameters.key() + table_layout();
+  const std::string key = cache_key(parameters);
   const std::string dir = options.cache_dir.empty() ? default_cache_dir() : options.cache_dir;
   if (options.use_cache && !dir.empty()) {
-    char name[64];
-    std::snprintf(name, sizeof name, "/atmosphere-%016llx.bin",
-                  static_cast<unsigned long long>(fnv1a(key)));
-    s.cache_path = dir + name;
+    s.cache_path = dir + "/" + cache_file_name(key);
     const auto start = std::chrono::steady_clock::now();
     if (load_cache(s.cache_path, key, s.tables)) {
       s.load_seconds =

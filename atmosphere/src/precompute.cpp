@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "model_tables.hpp"
+#include "precompute.hpp"
 
 namespace thalassa::atmosphere {
 namespace {
@@ -67,12 +68,12 @@ void for_each_irradiance_texel(int threads, const Texel& texel) {
   });
 }
 
-// The scattering density of order `order` for every texel of layer z whose mu_s index is j.
-void compute_density_slice(const glsl::AtmosphereParameters& atmosphere,
-                           const Texture2D& transmittance, const Texture3D& delta_rayleigh,
-                           const Texture3D& delta_mie, const Texture3D& delta_multiple,
-                           const Texture2D& delta_irradiance, int order, int z, int j,
-                           Texture3D& delta_density) {
+// The scattering density of order `order` for every texel of layer z whose mu_s index is j, in
+// double: element y * NU_SIZE + k is the texel (k * MU_S_SIZE + j, y, z).
+std::vector<vec3> density_slice(const glsl::AtmosphereParameters& atmosphere,
+                                const Texture2D& transmittance, const Texture3D& delta_rayleigh,
+                                const Texture3D& delta_mie, const Texture3D& delta_multiple,
+                                const Texture2D& delta_irradiance, int order, int z, int j) {
   constexpr int kZenith = glsl::SCATTERING_DENSITY_SAMPLE_COUNT;
   constexpr int kAzimuth = 2 * glsl::SCATTERING_DENSITY_SAMPLE_COUNT;
   // r and mu_s of the slice, from any of its texels.
@@ -100,6 +101,7 @@ void compute_density_slice(const glsl::AtmosphereParameters& atmosphere,
                                                 r - atmosphere.bottom_radius);
   const vec3 mie = atmosphere.mie_scattering *
                    glsl::GetProfileDensity(atmosphere.mie_density, r - atmosphere.bottom_radius);
+  std::vector<vec3> slice(glsl::SCATTERING_TEXTURE_HEIGHT * glsl::SCATTERING_TEXTURE_NU_SIZE);
   for (int y = 0; y < glsl::SCATTERING_TEXTURE_HEIGHT; ++y) {
     for (int k = 0; k < glsl::SCATTERING_TEXTURE_NU_SIZE; ++k) {
       const int x = k * glsl::SCATTERING_TEXTURE_MU_S_SIZE + j;
@@ -114,9 +116,10 @@ void compute_density_slice(const glsl::AtmosphereParameters& atmosphere,
                    (rayleigh * glsl::RayleighPhaseFunction(cos_angle) +
                     mie * glsl::MiePhaseFunction(atmosphere.mie_phase_g, cos_angle));
       }
-      delta_density.set(x, y, z, density);
+      slice[y * glsl::SCATTERING_TEXTURE_NU_SIZE + k] = density;
     }
   }
+  return slice;
 }
 
 Texture3D scattering_table() {
@@ -147,6 +150,17 @@ std::string glsl_profile(const DensityProfile& p) {
 }
 
 }  // namespace
+
+std::vector<vec3> compute_density_slice(const AtmosphereParameters& parameters,
+                                        const Texture2D& transmittance,
+                                        const Texture3D& delta_rayleigh,
+                                        const Texture3D& delta_mie,
+                                        const Texture3D& delta_multiple,
+                                        const Texture2D& delta_irradiance, int order, int z,
+                                        int j) {
+  return density_slice(to_glsl(parameters), transmittance, delta_rayleigh, delta_mie,
+                       delta_multiple, delta_irradiance, order, z, j);
+}
 
 std::string glsl_constructor(const AtmosphereParameters& a) {
   const glsl::AtmosphereParameters g = to_glsl(a);
@@ -210,9 +224,15 @@ void precompute_tables(const AtmosphereParameters& parameters, int threads, Mode
                  [&](int task) {
                    const int z = task / glsl::SCATTERING_TEXTURE_MU_S_SIZE;
                    const int j = task % glsl::SCATTERING_TEXTURE_MU_S_SIZE;
-                   compute_density_slice(atmosphere, transmittance, delta_rayleigh, delta_mie,
-                                         delta_multiple, delta_irradiance, order, z, j,
-                                         delta_density);
+                   const std::vector<vec3> slice =
+                       density_slice(atmosphere, transmittance, delta_rayleigh, delta_mie,
+                                     delta_multiple, delta_irradiance, order, z, j);
+                   for (int y = 0; y < glsl::SCATTERING_TEXTURE_HEIGHT; ++y) {
+                     for (int k = 0; k < glsl::SCATTERING_TEXTURE_NU_SIZE; ++k) {
+                       delta_density.set(k * glsl::SCATTERING_TEXTURE_MU_S_SIZE + j, y, z,
+                                         slice[y * glsl::SCATTERING_TEXTURE_NU_SIZE + k]);
+                     }
+                   }
                  });
 
     Texture2D next_irradiance(glsl::IRRADIANCE_TEXTURE_WIDTH, glsl::IRRADIANCE_TEXTURE_HEIGHT);

@@ -762,7 +762,13 @@ vec3 GetSkyRadianceToPoint(IN(AtmosphereParameters) atmosphere,
                            IN(ScatteringTexture) scattering_texture,
                            IN(ScatteringTexture) single_mie_scattering_texture, IN(vec3) camera,
                            IN(vec3) point, IN(vec3) sun_direction, OUT(vec3) transmittance) {
-  vec3 view_ray = normalize(point - camera);
+  // A point at the camera has nothing in between (and no direction: normalize would give NaN).
+  Number point_distance = length(point - camera);
+  if (point_distance == 0.0) {
+    transmittance = vec3(1.0);
+    return vec3(0.0);
+  }
+  vec3 view_ray = (point - camera) / point_distance;
   vec3 position = camera;
   Number r = length(position);
   Number rmu = dot(position, view_ray);
@@ -819,8 +825,9 @@ vec3 GetSunAndSkyIrradiance(IN(AtmosphereParameters) atmosphere,
                             OUT(vec3) sky_irradiance) {
   Number r = length(point);
   Number mu_s = ClampCosine(dot(point, sun_direction) / r);
+  // max: for a normal facing straight down, 1 + n.up rounds to -1e-16, not 0.
   sky_irradiance = GetIrradiance(atmosphere, irradiance_texture, r, mu_s) *
-                   (1.0 + dot(normal, point) / r) * 0.5;
+                   max(1.0 + dot(normal, point) / r, 0.0) * 0.5;
   return atmosphere.solar_irradiance *
          GetTransmittanceToSun(atmosphere, transmittance_texture, r, mu_s) *
          max(dot(normal, sun_direction), 0.0);
