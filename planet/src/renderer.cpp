@@ -5,10 +5,9 @@
 #include <cmath>
 #include <map>
 
-#include "thalassa/atmosphere/environment_map.hpp"
+#include "sky_provider_factory.hpp"
 #include "thalassa/atmosphere/gl/sky_node.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
-#include "thalassa/atmosphere/model.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
@@ -70,21 +69,6 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
 }  // namespace
 
 void check_drawable(const Scene& /*scene*/, const std::string& /*source*/) {}
-
-std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(const Scene& scene,
-                                                           const RendererOptions& options) {
-  const double radius =
-      scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius : atmosphere::kEarthMeanRadius;
-  if (!scene.sky.exr.empty()) {
-    auto map = std::make_shared<const atmosphere::EnvironmentMap>(scene.sky.exr);
-    return atmosphere::make_environment_provider(std::move(map), radius);
-  }
-  atmosphere::PrecomputeOptions precompute;
-  precompute.cache_dir = options.cache_dir;
-  return atmosphere::make_atmosphere_provider(
-      atmosphere::AtmosphereModel::create(atmosphere::AtmosphereParameters::earth(radius),
-                                          precompute));
-}
 
 struct Renderer::Impl {
   GlContext& context;
