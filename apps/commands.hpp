@@ -27,13 +27,29 @@ struct RenderArgs {
   std::string terms = "sun,sky,sea,air";  // the ocean's light terms, any subset
 };
 
+struct SkyArgs {
+  std::string scene;  // empty: the embedded default scene
+  std::string exr;
+  std::optional<std::string> png;  // default: the EXR's path with .png
+  bool no_png = false;
+  std::string panorama;       // empty: no panorama
+  int panorama_width = 2048;  // texels (height: width / 2)
+  bool panorama_width_given = false;
+  int size = 512;  // texels per side of the sky map
+  std::vector<std::string> sets;
+  std::string stats;
+  std::string backend;  // empty: the default headless backend
+};
+
 struct InfoArgs {
   std::string backend;
 };
 
 void add_render_command(CLI::App& app, RenderArgs& args);
+void add_sky_command(CLI::App& app, SkyArgs& args);
 void add_info_command(CLI::App& app, InfoArgs& args);
 int run_render(const RenderArgs& args);
+int run_sky(const SkyArgs& args);
 int run_info(const InfoArgs& args);
 
 // Prints "thalassa: <message>" on stderr.

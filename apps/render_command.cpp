@@ -1,79 +1,12 @@
-#include <unistd.h>
-#include <algorithm>
-#include <cctype>
-#include <cstdio>
-#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "commands.hpp"
+#include "common.hpp"
 #include "thalassa/thalassa.hpp"
 
 namespace thalassa::cli {
 namespace {
-
-namespace fs = std::filesystem;
-
-bool has_extension(const std::string& path, const std::string& extension) {
-  std::string ext = fs::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext == extension;
-}
-
-// Output paths are checked before any work, so that a typo costs no render. Returns an error
-// message or "".
-std::string check_output(const std::string& option, const std::string& path,
-                         const std::string& extension) {
-  if (!extension.empty() && !has_extension(path, extension))
-    return option + " " + path + ": expected a file name ending in " + extension;
-  const fs::path folder = fs::path(path).parent_path();
-  std::error_code ec;
-  if (!folder.empty() && !fs::is_directory(folder, ec))
-    return option + " " + path + ": folder " + folder.string() + " does not exist";
-  if (fs::is_directory(path, ec)) return option + " " + path + ": is a folder, expected a file";
-  return "";
-}
-
-// A name beside `path` for an output that is complete but not yet in place.
-std::string pending_path(const std::string& path) {
-  const fs::path target(path);
-  return (target.parent_path() / ("." + target.stem().string() + ".pending-" +
-                                  std::to_string(getpid()) + target.extension().string()))
-      .string();
-}
-
-// The outputs of one run appear together or not at all: each is written whole to a pending
-// name, and only when all are written are they renamed into place.
-class PendingOutputs {
- public:
-  ~PendingOutputs() {
-    std::error_code ec;
-    for (const auto& [pending, final_path] : outputs_) fs::remove(pending, ec);
-  }
-  // The name to write `final_path`'s content to.
-  std::string add(const std::string& final_path) {
-    outputs_.emplace_back(pending_path(final_path), final_path);
-    return outputs_.back().first;
-  }
-  void commit() {
-    for (const auto& [pending, final_path] : outputs_) {
-      std::error_code ec;
-      fs::rename(pending, final_path, ec);
-      if (ec) throw FileError(final_path + ": cannot move into place: " + ec.message());
-    }
-    outputs_.clear();
-  }
-
- private:
-  std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
-};
-
-std::string format_number(double value) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.9g", value);
-  return text;
-}
 
 // "sun,sky,sea,air" (any non-empty subset, any order) -> the terms; an error message otherwise.
 std::string parse_terms(const std::string& text, LightTerms& terms) {
@@ -111,15 +44,14 @@ std::string stats_json(const RenderStats& stats) {
   json["passes"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.passes) json["passes"][name] = ms;
   json["resolved_waves"] = stats.resolved_waves;
+  json["sky_provider"] = stats.sky_provider;
+  json["setup_ms"] = nlohmann::ordered_json::object();
+  for (const auto& [name, ms] : stats.setup_ms) json["setup_ms"][name] = ms;
   json["built"] = stats.built;
   return json.dump(2) + "\n";
 }
 
 }  // namespace
-
-void print_error(const std::string& message) {
-  std::fprintf(stderr, "thalassa: %s\n", message.c_str());
-}
 
 void add_render_command(CLI::App& app, RenderArgs& args) {
   CLI::App* render = app.add_subcommand(
@@ -146,36 +78,24 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
 
 int run_render(const RenderArgs& args) {
   // 1. Everything the user typed is checked before any GL work.
-  Scene scene;
-  std::string merged;
+  LoadedScene loaded;
   try {
-    SceneBuilder builder;
-    if (!args.scene.empty()) builder.load_file(args.scene);
-    for (const auto& assignment : args.sets) builder.set(assignment);
-    if (args.float_exr) builder.set("image.exr_type=float");
-    scene = builder.build();
-    merged = builder.merged_json();
-    check_drawable(scene, builder.source_of("sky.exr"));  // before any GL work
+    loaded = load_scene(args.scene, args.sets,
+                        args.float_exr ? std::vector<std::string>{"image.exr_type=float"}
+                                       : std::vector<std::string>{});
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
   }
-  const std::string png = args.no_png ? std::string()
-                          : args.png  ? *args.png
-                                      : fs::path(args.exr).replace_extension(".png").string();
+  const Scene& scene = loaded.scene;
+  const std::string png = png_path(args.exr, args.png, args.no_png);
   RendererOptions renderer_options;
-  std::vector<std::string> problems = {
+  const std::vector<std::string> problems = {
       parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
       png.empty() ? "" : check_output("--png", png, ".png"),
-      args.stats.empty() ? "" : check_output("--stats", args.stats, "")};
-  // The image outputs differ by extension; the statistics may name either of them.
-  if (!args.stats.empty()) {
-    std::error_code ec;
-    const fs::path stats = fs::weakly_canonical(args.stats, ec);
-    if (stats == fs::weakly_canonical(args.exr, ec) ||
-        (!png.empty() && stats == fs::weakly_canonical(png, ec)))
-      problems.push_back("--stats " + args.stats + ": the same file as an image output");
-  }
+      args.stats.empty() ? "" : check_output("--stats", args.stats, ""),
+      // The image outputs differ by extension; the statistics may name either of them.
+      args.stats.empty() ? "" : check_distinct("--stats", args.stats, {args.exr, png})};
   for (const std::string& problem : problems) {
     if (!problem.empty()) {
       print_error(problem);
@@ -187,9 +107,7 @@ int run_render(const RenderArgs& args) {
   ContextOptions options;
   options.width = scene.image.width;
   options.height = scene.image.height;
-  std::unique_ptr<GlContext> context = args.backend.empty()
-                                           ? create_headless_context(options)
-                                           : create_context(*parse_backend(args.backend), options);
+  std::unique_ptr<GlContext> context = open_context(args.backend, options);
   std::unique_ptr<Renderer> renderer_owner;
   try {
     renderer_owner = std::make_unique<Renderer>(*context, scene, renderer_options);
@@ -214,7 +132,7 @@ int run_render(const RenderArgs& args) {
   const auto& c = scene.camera;
   Metadata metadata = {
       {"thalassa:version", THALASSA_VERSION_STRING},
-      {"thalassa:scene", merged},
+      {"thalassa:scene", loaded.merged_json},
       {"thalassa:camera",
        "lat=" + format_number(c.lat) + " lon=" + format_number(c.lon) +
            " height=" + format_number(c.height) + " heading=" + format_number(c.heading) +

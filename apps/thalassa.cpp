@@ -12,8 +12,10 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", THALASSA_VERSION_STRING);
   RenderArgs render_args;
+  SkyArgs sky_args;
   InfoArgs info_args;
   add_render_command(app, render_args);
+  add_sky_command(app, sky_args);
   add_info_command(app, info_args);
   try {
     app.parse(argc, argv);
@@ -25,6 +27,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("render")) return run_render(render_args);
+    if (app.got_subcommand("sky")) return run_sky(sky_args);
     if (app.got_subcommand("info")) return run_info(info_args);
   } catch (const std::exception& error) {
     print_error(error.what());

@@ -45,28 +45,33 @@ void HdrTarget::begin() {
   glClearNamedFramebufferfv(framebuffer_.get(), GL_DEPTH, 0, &far_depth);
 }
 
-std::vector<float> HdrTarget::read_rgba_top_down() const {
+std::vector<float> read_texture_rgba_top_down(GLuint texture, int width, int height,
+                                              const char* what) {
   const StateGuard guard;  // the pack state below is a host's to keep
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glPixelStorei(GL_PACK_ROW_LENGTH, 0);
   glPixelStorei(GL_PACK_SKIP_ROWS, 0);
   glPixelStorei(GL_PACK_SKIP_PIXELS, 0);
-  const std::size_t row = static_cast<std::size_t>(width_) * 4;
-  std::vector<float> pixels(row * static_cast<std::size_t>(height_));
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  std::vector<float> pixels(row * static_cast<std::size_t>(height));
   const std::size_t bytes = pixels.size() * sizeof(float);
   // The scene caps images at 8192 x 8192 (1 GiB of RGBA floats), below GLsizei's 2 GiB.
   if (bytes > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
-    throw GlError("HDR target read-back: " + std::to_string(width_) + "x" +
-                  std::to_string(height_) + " is larger than one GL read can return");
-  glGetTextureImage(color_.get(), 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(bytes), pixels.data());
-  check_error("HDR target read-back");
+    throw GlError(std::string(what) + ": " + std::to_string(width) + "x" + std::to_string(height) +
+                  " is larger than one GL read can return");
+  glGetTextureImage(texture, 0, GL_RGBA, GL_FLOAT, static_cast<GLsizei>(bytes), pixels.data());
+  check_error(what);
   // GL's rows run bottom-up: flip in place (no second copy of a possibly large image).
-  for (int y = 0; y < height_ / 2; ++y)
+  for (int y = 0; y < height / 2; ++y)
     std::swap_ranges(pixels.begin() + static_cast<std::ptrdiff_t>(y * row),
                      pixels.begin() + static_cast<std::ptrdiff_t>((y + 1) * row),
-                     pixels.begin() + static_cast<std::ptrdiff_t>((height_ - 1 - y) * row));
+                     pixels.begin() + static_cast<std::ptrdiff_t>((height - 1 - y) * row));
   return pixels;
+}
+
+std::vector<float> HdrTarget::read_rgba_top_down() const {
+  return read_texture_rgba_top_down(color_.get(), width_, height_, "HDR target read-back");
 }
 
 }  // namespace thalassa::gl

@@ -6,10 +6,9 @@
 #include <cmath>
 #include <map>
 
-#include "thalassa/atmosphere/environment_map.hpp"
+#include "sky_provider_factory.hpp"
 #include "thalassa/atmosphere/gl/sky_node.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
-#include "thalassa/atmosphere/model.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
@@ -75,27 +74,6 @@ void check_drawable(const Scene& scene, const std::string& source) {
   if (!scene.sky.exr.empty() && !std::filesystem::is_regular_file(scene.sky.exr, error))
     throw SceneError(source + ": sky.exr: expected an HDR image file, got \"" + scene.sky.exr +
                      "\" (no such file)");
-}
-
-std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(const Scene& scene,
-                                                           const RendererOptions& options) {
-  const double radius =
-      scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius : atmosphere::kEarthMeanRadius;
-  if (!scene.sky.exr.empty()) {
-    std::shared_ptr<const atmosphere::EnvironmentMap> map;
-    try {
-      map = std::make_shared<const atmosphere::EnvironmentMap>(scene.sky.exr);
-    } catch (const atmosphere::EnvironmentMapError& e) {
-      // A photograph that is not a usable sky is invalid input, like a bad key.
-      throw SceneError(std::string("sky.exr: ") + e.what());
-    }
-    return atmosphere::make_environment_provider(std::move(map), radius);
-  }
-  atmosphere::PrecomputeOptions precompute;
-  precompute.cache_dir = options.cache_dir;
-  return atmosphere::make_atmosphere_provider(
-      atmosphere::AtmosphereModel::create(atmosphere::AtmosphereParameters::earth(radius),
-                                          precompute));
 }
 
 struct Renderer::Impl {

@@ -5,11 +5,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "thalassa/engine/image.hpp"
 
@@ -111,6 +115,14 @@ TEST_F(Cli, StatsJsonHasTheContractKeys) {
   // The paper's default: 60 waves from 2 cm to 30 m; a 32x24 image resolves some of them.
   EXPECT_GT(stats["resolved_waves"].get<int>(), 0);
   EXPECT_LE(stats["resolved_waves"].get<int>(), 60);
+  // The sky: which provider, and its one-off costs (tables loaded or computed, the sky map the
+  // ocean reflects).
+  EXPECT_EQ(stats["sky_provider"], "atmosphere");
+  ASSERT_TRUE(stats["setup_ms"].is_object());
+  EXPECT_TRUE(stats["setup_ms"].contains("sky.provider"));
+  EXPECT_TRUE(stats["setup_ms"].contains("atmosphere.load") ||
+              stats["setup_ms"].contains("atmosphere.precompute"));
+  EXPECT_GT(stats["setup_ms"]["sky.map"].get<double>(), 0.0);
 }
 
 TEST_F(Cli, OnlyWhatTheSceneNeedsIsBuilt) {
@@ -220,6 +232,197 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   expect_invalid(run("render --terms ,"), {"--terms"});
   EXPECT_EQ(run("render --backend vulkan").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
+  EXPECT_EQ(files(), std::vector<std::string>{});
+}
+
+// ---- thalassa sky ----
+
+// The centre of texel (i, j) of an n x n sky map in u units (column 0 west, row 0 north).
+std::pair<double, double> sky_map_u(int i, int j, int n) {
+  constexpr double kExtent = 1.25;
+  return {-kExtent + 2.0 * kExtent * (i + 0.5) / n, kExtent - 2.0 * kExtent * (j + 0.5) / n};
+}
+
+// The texel of largest R + G + B: (column, row).
+std::pair<int, int> brightest(const thalassa::Image& image) {
+  std::pair<int, int> best{-1, -1};
+  float best_sum = -1.0f;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const float* p = image.pixel(x, y);
+      if (p[0] + p[1] + p[2] > best_sum) {
+        best_sum = p[0] + p[1] + p[2];
+        best = {x, y};
+      }
+    }
+  return best;
+}
+
+TEST_F(Cli, SkyWritesTheStereographicMap) {
+  const Result r = run("sky --size 64 -o sky.exr --stats s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(), (std::vector<std::string>{"s.json", "sky.exr", "sky.png"}));
+  thalassa::Metadata metadata;
+  const thalassa::Image map = thalassa::read_image((dir_ / "sky.exr").string(), &metadata);
+  ASSERT_EQ(map.width, 64);
+  ASSERT_EQ(map.height, 64);
+  std::map<std::string, std::string> meta(metadata.begin(), metadata.end());
+  EXPECT_NE(meta["thalassa:sky_map"].find("row 0 north, column 0 west"), std::string::npos);
+  EXPECT_EQ(meta["thalassa:sun"], "zenith=60 azimuth=180 source=scene");
+  EXPECT_EQ(nlohmann::json::parse(meta["thalassa:scene"])["sun"]["zenith"], 60.0);
+  const thalassa::Image png = thalassa::read_image((dir_ / "sky.png").string());
+  EXPECT_EQ(png.width, 64);
+
+  // Inside the horizon circle: finite, positive sky. Outside it (texels wholly beyond it): the
+  // one below-horizon radiance.
+  const double half_diagonal = std::sqrt(2.0) * 1.25 / 64;
+  const float* below = map.pixel(0, 0);
+  int sky_texels = 0, below_texels = 0;
+  for (int j = 0; j < 64; ++j)
+    for (int i = 0; i < 64; ++i) {
+      const auto [ux, uy] = sky_map_u(i, j, 64);
+      const double radius = std::hypot(ux, uy);
+      const float* p = map.pixel(i, j);
+      if (radius < 1.0 - half_diagonal) {
+        ++sky_texels;
+        for (int c = 0; c < 3; ++c)
+          ASSERT_TRUE(std::isfinite(p[c]) && p[c] > 0.0f) << i << "," << j << " channel " << c;
+      } else if (radius > 1.0 + half_diagonal) {
+        ++below_texels;
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(p[c], below[c]) << i << "," << j;
+      }
+    }
+  // The circle covers pi (64 / 2.5)^2 = 2059 texels, the rest 2037; less a ring of ~160.
+  EXPECT_GT(sky_texels, 1850);
+  EXPECT_GT(below_texels, 1850);
+  // A blue sky at the zenith (the four texels around u = 0), brighter than the dim
+  // multiple-reflection radiance below the horizon.
+  for (int j : {31, 32})
+    for (int i : {31, 32}) {
+      const float* p = map.pixel(i, j);
+      EXPECT_GT(p[2], p[0]) << i << "," << j;
+      EXPECT_GT(p[2], below[2]) << i << "," << j;
+    }
+
+  std::ifstream in(dir_ / "s.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  for (const char* key : {"backend", "renderer", "sky_provider", "map_size", "setup_ms", "built"})
+    EXPECT_TRUE(stats.contains(key)) << key;
+  EXPECT_EQ(stats["sky_provider"], "atmosphere");
+  EXPECT_EQ(stats["map_size"], 64);
+  EXPECT_EQ(stats["panorama_width"], 0);
+  EXPECT_GT(stats["setup_ms"]["sky.map"].get<double>(), 0.0);
+  const auto built = stats["built"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(built.begin(), built.end(), "atmosphere.sky_map"), built.end());
+}
+
+// The sun's glow marks its azimuth: north up (row 0), east right (the last column). The
+// brightest texel lies on the horizon below the sun, in the sun's half of the map; the aureole
+// is centred on the sun (at |u| = tan(zenith / 2)), brighter there than 30 deg of azimuth to
+// either side at the same zenith angle.
+TEST_F(Cli, SkyMapIsBrightestTowardTheSun) {
+  const double half_turn = std::tan(30.0 * M_PI / 180.0);  // |u| of the default zenith, 60 deg
+  // The texel of a 64-texel map that holds u: (column, row).
+  auto texel_at = [](double azimuth_deg, double radius) {
+    const double a = azimuth_deg * M_PI / 180.0;
+    const double ux = radius * std::sin(a), uy = radius * std::cos(a);
+    return std::make_pair(int((ux + 1.25) / 2.5 * 64), int((1.25 - uy) / 2.5 * 64));
+  };
+  for (int azimuth : {0, 90, 270}) {
+    const std::string name = std::to_string(azimuth) + ".exr";
+    ASSERT_EQ(
+        run("sky --size 64 --no-png --set sun.azimuth=" + std::to_string(azimuth) + " -o " + name)
+            .status,
+        0)
+        << azimuth;
+    const thalassa::Image map = thalassa::read_image((dir_ / name).string());
+    const auto [column, row] = brightest(map);
+    // North: the top half; east: the right half; west: the left half.
+    EXPECT_TRUE(azimuth == 0    ? row < 32
+                : azimuth == 90 ? column >= 32
+                                : column < 32)
+        << azimuth << ": brightest at column " << column << ", row " << row;
+    auto sum = [&](std::pair<int, int> t) {
+      const float* p = map.pixel(t.first, t.second);
+      return p[0] + p[1] + p[2];
+    };
+    const float at_sun = sum(texel_at(azimuth, half_turn));
+    EXPECT_GT(at_sun, 1.2f * sum(texel_at(azimuth - 30, half_turn))) << azimuth;
+    EXPECT_GT(at_sun, 1.2f * sum(texel_at(azimuth + 30, half_turn))) << azimuth;
+  }
+}
+
+TEST_F(Cli, SkyPanoramaIsEquirectangular) {
+  // Sun at azimuth 100, zenith 60: column 100 / 360 * 64 = 17.8, row 60 / 180 * 32 = 10.7.
+  const Result r =
+      run("sky --size 16 -o map.exr --panorama pano.exr --panorama-width 64 --set sun.azimuth=100 "
+          "--stats s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(files(),
+            (std::vector<std::string>{"map.exr", "map.png", "pano.exr", "pano.png", "s.json"}));
+  thalassa::Metadata metadata;
+  const thalassa::Image pano = thalassa::read_image((dir_ / "pano.exr").string(), &metadata);
+  ASSERT_EQ(pano.width, 64);
+  ASSERT_EQ(pano.height, 32);
+  std::map<std::string, std::string> meta(metadata.begin(), metadata.end());
+  EXPECT_NE(meta["thalassa:panorama"].find("left edge north"), std::string::npos);
+  for (float v : pano.rgba) ASSERT_TRUE(std::isfinite(v));
+  // The sun's disc is the brightest texel, where its direction falls.
+  EXPECT_EQ(brightest(pano), std::make_pair(17, 10));
+  // Blue sky at the zenith row.
+  EXPECT_GT(pano.pixel(40, 0)[2], pano.pixel(40, 0)[0]);
+  std::ifstream in(dir_ / "s.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["panorama_width"], 64);
+  EXPECT_EQ(stats["panorama_height"], 32);
+  EXPECT_TRUE(stats["setup_ms"].contains("sky.panorama"));
+}
+
+// With an HDR photograph as the sky, its sun (not the scene's) lights the map and the panorama.
+TEST_F(Cli, SkyFromAPhotographUsesItsSun) {
+  thalassa::Image photo;
+  photo.width = 64;
+  photo.height = 32;
+  photo.rgba.assign(64 * 32 * 4, 0.0f);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 64; ++x) {
+      float* p = photo.pixel(x, y);
+      p[0] = 0.05f, p[1] = 0.08f, p[2] = 0.12f, p[3] = 1.0f;
+    }
+  // The sun: one texel at azimuth [90, 95.6] deg, zenith angle [45, 50.6] deg.
+  float* sun = photo.pixel(16, 8);
+  sun[0] = sun[1] = sun[2] = 5000.0f;
+  thalassa::write_exr((dir_ / "photo.exr").string(), photo, thalassa::ExrPixelType::Float);
+  const Result r =
+      run("sky --size 32 --no-png -o map.exr --panorama pano.exr --panorama-width 64 "
+          "--set sky.exr=photo.exr --stats s.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  thalassa::Metadata metadata;
+  const thalassa::Image pano = thalassa::read_image((dir_ / "pano.exr").string(), &metadata);
+  std::map<std::string, std::string> meta(metadata.begin(), metadata.end());
+  EXPECT_NE(meta["thalassa:sun"].find("source=sky.exr"), std::string::npos) << meta["thalassa:sun"];
+  EXPECT_EQ(meta["thalassa:sky_provider"], "environment_map");
+  EXPECT_EQ(brightest(pano), std::make_pair(16, 8));
+  // The map holds the photograph's sky, sun removed: the zenith texel is the sky's value.
+  const thalassa::Image map = thalassa::read_image((dir_ / "map.exr").string());
+  EXPECT_NEAR(map.pixel(16, 16)[2], 0.12f, 1e-3f);
+  std::ifstream in(dir_ / "s.json");
+  EXPECT_EQ(nlohmann::json::parse(in)["sky_provider"], "environment_map");
+}
+
+TEST_F(Cli, SkyInvalidInputExitsWith2AndWritesNothing) {
+  expect_invalid(run("sky -o s.exr --size 0"), {"--size 0", "[1, 8192]"});
+  expect_invalid(run("sky -o s.exr --set nothing.here=1"), {"--set", "nothing.here"});
+  expect_invalid(run("sky -o s.exr --panorama p.exr --panorama-width 3"),
+                 {"--panorama-width 3", "even"});
+  expect_invalid(run("sky -o s.exr --panorama-width 64"), {"--panorama-width", "--panorama"});
+  expect_invalid(run("sky -o s.png"), {"-o", ".exr"});
+  expect_invalid(run("sky -o s.exr --panorama p.png"), {"--panorama", ".exr"});
+  expect_invalid(run("sky -o s.exr --panorama s.exr"), {"--panorama", "same file"});
+  expect_invalid(run("sky -o s.exr --stats s.png"), {"--stats", "same file"});
+  expect_invalid(run("sky -o nowhere/s.exr"), {"nowhere"});
+  EXPECT_EQ(run("sky").status, 2);  // -o is required
+  EXPECT_EQ(run("sky -o s.exr --backend glfw").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{});
 }
 

@@ -1,5 +1,7 @@
-// thalassa — the planet module's public surface: camera frames and the scene renderer.
+// thalassa — the planet module's public surface: camera frames, the scene renderer and the sky
+// export.
 #pragma once
 
 #include "thalassa/planet/camera_frame.hpp"
 #include "thalassa/planet/renderer.hpp"
+#include "thalassa/planet/sky_export.hpp"

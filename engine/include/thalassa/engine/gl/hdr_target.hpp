@@ -10,6 +10,12 @@
 
 namespace thalassa::gl {
 
+// Reads level 0 of a 2D texture of width x height texels as RGBA floats, top row first (GL's
+// rows are bottom-up, so row 0 of the result is t = 1). Leaves the pack state as it found it;
+// throws GlError naming `what` if the read fails or is larger than one GL read can return.
+std::vector<float> read_texture_rgba_top_down(GLuint texture, int width, int height,
+                                              const char* what);
+
 class HdrTarget {
  public:
   HdrTarget(int width, int height);  // throws GlError if the framebuffer is incomplete

@@ -1,0 +1,63 @@
+// What the subcommands of the `thalassa` program share: reading the scene with its overrides,
+// checking output paths before any work, opening the GL context and writing the outputs of a
+// run together (DESIGN section 5).
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "thalassa/thalassa.hpp"
+
+namespace thalassa::cli {
+
+// A scene as the user gave it: the file (empty: the embedded default scene), then each --set
+// in order, then `extra` assignments the command implies (e.g. image.exr_type=float).
+struct LoadedScene {
+  Scene scene;
+  std::string merged_json;  // the merged scene as JSON, for the outputs' metadata
+};
+// Throws SceneError (exit status 2) for a bad file, override or an undrawable scene.
+LoadedScene load_scene(const std::string& path, const std::vector<std::string>& sets,
+                       const std::vector<std::string>& extra = {});
+
+// Checks an output path before any work, so that a typo costs no render: the extension (none
+// checked when `extension` is empty), an existing folder, not a folder itself. Returns an error
+// message naming `option`, or "".
+std::string check_output(const std::string& option, const std::string& path,
+                         const std::string& extension);
+// The PNG written beside an EXR: none with --no-png, the --png path if given, else the EXR's
+// path with .png.
+std::string png_path(const std::string& exr, const std::optional<std::string>& png, bool no_png);
+// "" when `path` (given with `option`) is a different file from each of `others`; an error
+// message otherwise.
+std::string check_distinct(const std::string& option, const std::string& path,
+                           const std::vector<std::string>& others);
+
+// The context of --backend ("" for the default headless one, EGL else OSMesa).
+std::unique_ptr<GlContext> open_context(const std::string& backend,
+                                        const ContextOptions& options = {});
+
+// The outputs of one run appear together or not at all: each is written whole to a pending
+// name beside its final one, and only when all are written are they renamed into place. The
+// pending files of a run that fails before commit() are removed.
+class PendingOutputs {
+ public:
+  PendingOutputs() = default;
+  ~PendingOutputs();
+  PendingOutputs(const PendingOutputs&) = delete;
+  PendingOutputs& operator=(const PendingOutputs&) = delete;
+  // The name to write `final_path`'s content to.
+  std::string add(const std::string& final_path);
+  void commit();
+
+ private:
+  std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
+};
+
+// A number as the metadata print it: %.9g.
+std::string format_number(double value);
+
+}  // namespace thalassa::cli
