@@ -287,6 +287,45 @@ TEST_F(ReferenceTest, RossBrdfSunFresnelAndLambdaMatchDoubleReference) {
   }
 }
 
+// The rest of the ocean's shader functions (issue 3, point 6): the slope pdf p, the visible-slope
+// pdfs q_vn and q_vn^e, the filter weight w, the sky-map mapping U and its derivatives, and the
+// trochoid slope variance, over the grid of directions (see evaluate.frag, FUNCTION 8-10).
+TEST_F(ReferenceTest, SlopePdfsWeightsSkyMapMappingAndVarianceMatchDoubleReference) {
+  const glm::dvec3 sun = sun_at(30.0);
+  auto up = [](const glm::dvec3& v) {
+    return glm::normalize(glm::dvec3(v.x, v.y, std::abs(v.z) + 0.05));
+  };
+  for (const glm::dvec2 variance : {glm::dvec2(2e-4, 1e-4), glm::dvec2(0.0153, 0.0145),
+                                    glm::dvec2(0.09, 0.05)}) {
+    const glm::dvec2 sv = glm::dvec2(glm::vec2(variance));
+    const double worst = compare(evaluate(8, sun, sv), 4, [&](const glm::dvec3& v) {
+      const glm::dvec2 zeta(v.x * 0.5, v.y * 0.5);
+      return glm::dvec4(glsl::OceanSlopePdf(zeta, sv),
+                        glsl::OceanVisibleSlopePdf(zeta, up(v), sun, sv),
+                        glsl::OceanVisibleSlopePdfE(zeta, up(v), sv),
+                        glsl::WaveFilterWeight(1.0, 2.5, 4.0 * std::abs(v.z)));
+    });
+    std::printf("p, q_vn, q_vn^e, w, variance (%g, %g): worst %.3g\n", sv.x, sv.y, worst);
+  }
+  const glm::dvec3 n = glm::normalize(glm::dvec3(0.1, -0.2, 1.0));
+  const glm::dvec3 t_x = glm::normalize(glm::dvec3(1.0, 0.0, 0.0) - n.x * n);
+  const glm::dvec3 t_y = glm::cross(n, t_x);
+  auto gradients = [&](const glm::dvec3& v, glm::dvec2& u0, glm::dvec2& du_x, glm::dvec2& du_y) {
+    glsl::OceanSkyMapGradients(up(v), t_x, t_y, n, u0, du_x, du_y);
+  };
+  const double worst_u = compare(evaluate(9, sun), 4, [&](const glm::dvec3& v) {
+    glm::dvec2 u0, du_x, du_y;
+    gradients(v, u0, du_x, du_y);
+    return glm::dvec4(u0.x, u0.y, du_x.x, du_x.y);
+  });
+  const double worst_v = compare(evaluate(10, sun), 3, [&](const glm::dvec3& v) {
+    glm::dvec2 u0, du_x, du_y;
+    gradients(v, u0, du_x, du_y);
+    return glm::dvec4(du_y.x, du_y.y, glsl::TrochoidSlopeVariance(0.9 * std::abs(v.x)), 1.0);
+  });
+  std::printf("U, dU/dzeta, trochoid slope variance: worst %.3g, %.3g\n", worst_u, worst_v);
+}
+
 // Issue 3, point 7: the phases omega t - k.x are wrapped on the CPU in double for a frame
 // origin x0, so the GPU's positions and normals far from the origin and after a long time are
 // as accurate as at t = 0 at the origin. The GPU evaluates eq. 2 and 3 at local positions x

@@ -40,6 +40,29 @@ void main() {
   result = vec4(OceanReflectedSun(v, sun_dir, slope_variance, 0.02),
                 OceanEffectiveFresnel(v.z, OceanSlopeVarianceToward(v, slope_variance), 0.02),
                 OceanSmithLambdaToward(v, slope_variance), 1.0);
+#elif FUNCTION == 8
+  // The slope pdf p (eq. 7), the visible-slope pdfs q_vn (eq. 9) and q_vn^e (eq. 10) at the
+  // slopes zeta = v.xy / 2, and the filter weight w (sec. 3.2) at the ratio 4 |v.z|.
+  const vec2 zeta = vec2(v.x, v.y) * 0.5;
+  const vec3 up_v = normalize(vec3(v.x, v.y, abs(v.z) + 0.05));
+  result = vec4(OceanSlopePdf(zeta, slope_variance),
+                OceanVisibleSlopePdf(zeta, up_v, sun_dir, slope_variance),
+                OceanVisibleSlopePdfE(zeta, up_v, slope_variance),
+                WaveFilterWeight(1.0, 2.5, 4.0 * abs(v.z)));
+#elif FUNCTION == 9 || FUNCTION == 10
+  // The sky-map mapping U at zeta = 0 and its derivatives (eq. 27) for a view above the
+  // surface, in a tangent frame tilted from the vertical; and Appendix A's slope variance.
+  const vec3 up_v = normalize(vec3(v.x, v.y, abs(v.z) + 0.05));
+  const vec3 n = normalize(vec3(0.1, -0.2, 1.0));
+  const vec3 t_x = normalize(vec3(1.0, 0.0, 0.0) - n.x * n);
+  const vec3 t_y = cross(n, t_x);
+  vec2 u0, du_x, du_y;
+  OceanSkyMapGradients(up_v, t_x, t_y, n, u0, du_x, du_y);
+#if FUNCTION == 9
+  result = vec4(u0.x, u0.y, du_x.x, du_x.y);
+#else
+  result = vec4(du_y.x, du_y.y, TrochoidSlopeVariance(0.9 * abs(v.x)), 1.0);
+#endif
 #elif FUNCTION == 6 || FUNCTION == 7
   // Eq. 2's displacement (6) and eq. 3's normal (7) of all waves (w = 1) at local position x.
   const vec2 x = vec2(v.x, v.y);
