@@ -31,6 +31,9 @@ layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
 layout(std430, binding = 2) readonly buffer Tails { vec2 tails[]; };
 
 uniform int wave_count;
+// Largest slope variance the pixel's own normal variation adds (see main): 0.02, about a
+// 10 m/s sea's whole slope variance.
+const float ANTIALIAS_MAX_VARIANCE = 0.02;
 uniform vec2 downwind;  // unit, east-north-up
 uniform float n_min;    // N_min, N_max of w_n (sec. 3.2)
 uniform float n_max;
@@ -83,5 +86,21 @@ void main() {
   // Sec. 3.2: a normal facing away from the viewer is reflected back toward it.
   if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
   normal_out = vec4(n, 1.0);
-  variance_out = vec4(tails[first_unresolved] + partial_variance, 0.0, 0.0);
+  // The resolved normal still varies inside the pixel (the waves just above the w_n cut-off are
+  // 1 to 2.5 pixels long), and a BRDF no wider than the unresolved variance then samples the
+  // sun's tiny reflection at one point of that variation: glitter that aliases and flickers near
+  // the camera. The variation is added to the slope variance as the variance of the slopes over
+  // the pixel: for slopes that change linearly by d across a pixel, d^2 / 12 (a box filter's),
+  // from their screen-space derivatives along and across the wind (specular anti-aliasing in
+  // the manner of Kaplanyan et al. 2016, "Filtering distributions of normals for shading
+  // antialiasing"). It keeps the energy (the BRDF stays normalised) and removes the sparkle that
+  // one sample per pixel cannot resolve; capped at ANTIALIAS_MAX_VARIANCE so that a slope jump
+  // across a silhouette does not turn a pixel into a diffuse one.
+  const vec2 slope = vec2(n.x, n.y) / max(n.z, 1e-3);
+  const vec2 wind_slope = vec2(dot(slope, downwind), dot(slope, crosswind));
+  const vec2 slope_dx = dFdx(wind_slope);
+  const vec2 slope_dy = dFdy(wind_slope);
+  const vec2 pixel_variance =
+      min((slope_dx * slope_dx + slope_dy * slope_dy) / 12.0, vec2(ANTIALIAS_MAX_VARIANCE));
+  variance_out = vec4(tails[first_unresolved] + partial_variance + pixel_variance, 0.0, 0.0);
 }
