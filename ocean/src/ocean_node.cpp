@@ -75,7 +75,9 @@ class OceanNode final : public gl::Node {
     // The sea's sky map, seen from the sea surface at the camera's nadir (rebuilt only when the
     // sun moves), and the per-frame constants of the lighting, in double from the provider.
     const glm::dvec3 sun = inputs.sun_direction;
-    if (options_.sky) provider_->sky_map(0.0, sun, context.shaders, &context.timer);
+    // (Not with shrm, whose glossy maps replace it: they are built below, for the same sky.)
+    if (options_.sky && !options_.sky_shrm)
+      provider_->sky_map(0.0, sun, context.shaders, &context.timer);
     glm::dvec3 sky_irradiance = provider_->sky_irradiance(0.0, sun);
     if (glossy_sky_) {
       // With shrm, the sky's irradiance of L_sea comes from the SH projection the glossy maps are

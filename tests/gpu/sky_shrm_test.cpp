@@ -252,6 +252,9 @@ TEST(ShrmSky, RoughSeaSkyTermAgreesWithTextureGrad) {
     EXPECT_TRUE(has_item(renders["shrm"].stats.built, "sky.shrm_maps"));
     EXPECT_TRUE(has_item(renders["shrm"].stats.built, "ocean.sky_reflection.shrm"));
     EXPECT_FALSE(has_item(renders["texture_grad"].stats.built, "sky.shrm_maps"));
+    // ... and replace the stereographic sky map, which shrm does not read.
+    EXPECT_TRUE(has_item(renders["texture_grad"].stats.built, "atmosphere.sky_map"));
+    EXPECT_FALSE(has_item(renders["shrm"].stats.built, "atmosphere.sky_map"));
     // Once per sky map: the first frame (the renderer's own, untimed) built them; the timed
     // frames did not.
     EXPECT_LT(pass_ms(renders["shrm"].stats, "sky.shrm"), 0.0);

@@ -153,7 +153,7 @@ struct GlossySky {
   std::vector<float> rgba;
   // The sky's irradiance from the same projection: the order-2 SH (any normal, R&H 2001), and
   // E(up) on the horizontal sea with every band of the projection (l <= lighting_order), which
-  // the ocean's L_sea uses: the order-2 truncation of E(up) is 5 to 14 % for a sea-level sky
+  // the ocean's L_sea uses: the order-2 truncation of E(up) is 6 to 14 % for a sea-level sky
   // (bright at the horizon, then the step to the below-horizon radiance), against under 1.5 %
   // at order 8 (docs/spherical_harmonics.md, "In the engine").
   IrradianceSh irradiance{};
