@@ -258,9 +258,11 @@ const std::vector<KeyDesc>& key_table() {
           "ocean.deep_reflectance_b", {0, 1}, "", "0.047",
           "Irradiance reflectance of the water below the surface at 440 nm (blue)."),
       choice<&S::ocean, &OceanSettings::sky_filter>(
-          "ocean.sky_filter", {"texture_grad", "nine_samples"}, "\"texture_grad\"",
-          "Filtered sky reflection: the paper's single anisotropic fetch (eq. 27) or the average "
-          "of nine samples inside the filter's support (sec. 7.2)."),
+          "ocean.sky_filter", {"texture_grad", "nine_samples", "shrm"}, "\"texture_grad\"",
+          "Filtered sky reflection: the paper's single anisotropic fetch (eq. 27), the average "
+          "of nine samples inside the filter's support (sec. 7.2), or sky maps prefiltered in "
+          "frequency space for rough seas seen from afar (Ramamoorthi & Hanrahan 2002; "
+          "docs/spherical_harmonics.md)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),

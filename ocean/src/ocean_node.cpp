@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "ross_brdf_reference.hpp"
+#include "thalassa/atmosphere/gl/sky_shrm.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
@@ -37,6 +38,9 @@ class OceanNode final : public gl::Node {
     }
     glNamedBufferStorage(tail_buffer_.get(), static_cast<GLsizeiptr>(tails.size() * sizeof(float)),
                          tails.data(), 0);
+    // The glossy sky maps and the SH irradiance exist only when the scene asks for them.
+    if (options_.sky_shrm && (options_.sky || options_.sea))
+      glossy_sky_ = std::make_unique<atmosphere::GlossySkyMaps>();
   }
 
   std::string name() const override { return "ocean"; }
@@ -45,8 +49,11 @@ class OceanNode final : public gl::Node {
                                      "ocean.projected_grid", "ocean.backstop", "ocean.ross_brdf"};
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky)
-      list.push_back(options_.sky_nine_samples ? "ocean.sky_reflection.nine_samples"
-                                               : "ocean.sky_reflection.texture_grad");
+      list.push_back(options_.sky_shrm           ? "ocean.sky_reflection.shrm"
+                     : options_.sky_nine_samples ? "ocean.sky_reflection.nine_samples"
+                                                 : "ocean.sky_reflection.texture_grad");
+    if (glossy_sky_)
+      for (const std::string& item : glossy_sky_->built()) list.push_back(item);
     if (options_.sea) list.push_back("ocean.refracted_light");
     if (options_.air) list.push_back("ocean.aerial_perspective");
     return list;
@@ -58,6 +65,7 @@ class OceanNode final : public gl::Node {
     if (options_.sun_glint) lighting_defines["SUN_GLINT"] = "1";
     if (options_.sky) lighting_defines["SKY_TERM"] = "1";
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
+    if (options_.sky && options_.sky_shrm) lighting_defines["SKY_SHRM"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
@@ -67,9 +75,23 @@ class OceanNode final : public gl::Node {
     // The sea's sky map, seen from the sea surface at the camera's nadir (rebuilt only when the
     // sun moves), and the per-frame constants of the lighting, in double from the provider.
     const glm::dvec3 sun = inputs.sun_direction;
-    if (options_.sky) provider_->sky_map(0.0, sun, context.shaders, &context.timer);
-    const glm::dvec3 irradiance =
-        provider_->sun_irradiance(0.0, sun) + provider_->sky_irradiance(0.0, sun);
+    // (Not with shrm, whose glossy maps replace it: they are built below, for the same sky.)
+    if (options_.sky && !options_.sky_shrm)
+      provider_->sky_map(0.0, sun, context.shaders, &context.timer);
+    glm::dvec3 sky_irradiance = provider_->sky_irradiance(0.0, sun);
+    if (glossy_sky_) {
+      // With shrm, the sky's irradiance of L_sea comes from the SH projection the glossy maps are
+      // made of (E(up) with all its bands, not the order-2 truncation: see GlossySky), so the
+      // reflected and the refracted sky share one sky; the sun stays analytic (sun_irradiance
+      // below).
+      const atmosphere::GlossySky& glossy =
+          glossy_sky_->update(*provider_, 0.0, sun, &context.timer);
+      sky_irradiance = glossy.horizontal_irradiance;
+      const glm::dvec2 levels = glossy_sky_->level_mapping();
+      glProgramUniform2f(lighting, glGetUniformLocation(lighting, "sky_shrm_levels"),
+                         float(levels.x), float(levels.y));
+    }
+    const glm::dvec3 irradiance = provider_->sun_irradiance(0.0, sun) + sky_irradiance;
     const double sun_solid_angle =
         2.0 * glsl::PI * (1.0 - std::cos(provider_->sun_angular_radius()));
     const glm::dvec3 sun_irradiance = provider_->sun_radiance(0.0, sun) * sun_solid_angle;
@@ -96,6 +118,7 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(lighting, location(lighting, "horizon_distance"),
                        float(std::sqrt(height * (2.0 * radius + height))));
     provider_->bind();
+    if (glossy_sky_) glossy_sky_->bind();
     if (underwater) {
       glUseProgram(lighting);
       gl::draw_fullscreen_pass();
@@ -268,6 +291,7 @@ class OceanNode final : public gl::Node {
 
   OceanNodeOptions options_;
   std::shared_ptr<atmosphere::SkyProvider> provider_;
+  std::unique_ptr<atmosphere::GlossySkyMaps> glossy_sky_;  // only with sky_shrm
   WaveSet waves_;
   gl::Buffer wave_buffer_;
   gl::Buffer tail_buffer_;

@@ -130,6 +130,7 @@ struct Renderer::Impl {
                                         .sea = options.terms.sea,
                                         .air = options.terms.air,
                                         .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
+                                        .sky_shrm = scene.ocean.sky_filter == "shrm",
                                         .provider = provider}));
   }
 };

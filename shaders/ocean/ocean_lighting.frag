@@ -6,12 +6,16 @@
 // camera and the sea. SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
 // the terms (validation renders them one by one); SKY_NINE_SAMPLES replaces eq. 27's single
 // anisotropic fetch with the average of nine samples inside the filter's support that the paper
-// mentions (sec. 7.2). With UNDERWATER
+// mentions (sec. 7.2); SKY_SHRM replaces it with a lookup in sky maps prefiltered in frequency
+// space (Ramamoorthi & Hanrahan 2002; atmosphere/sky_shrm.glsl). With UNDERWATER
 // (a camera below the surface) the water body's light fills the view and no G-buffer is read.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
+#ifdef SKY_SHRM
+#include "atmosphere/sky_shrm.glsl"
+#endif
 
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
 
@@ -71,6 +75,17 @@ void main() {
                                               fresnel_r);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
+#ifdef SKY_SHRM
+  // Eq. 21 with L-bar (eq. 22) from the SHRM-prefiltered maps, read by the mirror direction of
+  // the mean normal. Two approximations (docs/spherical_harmonics.md): the slope density is made
+  // isotropic with the geometric mean of the two variances (the same p(0) and ellipse area), and
+  // the kernel is eq. 22's at normal view, radially symmetric about the mirror direction (P = 0),
+  // so the narrowing of the lobe across the plane of incidence at grazing views (by cos theta_v)
+  // is not represented. Fresnel stays outside, as eq. 26's effective Fresnel: a Fresnel-weighted
+  // Ross BRDF needs a high view order P in SH (sh_brdf_test.cpp).
+  const vec2 shrm_variance = OceanClampedSlopeVariance(slope_variance);
+  sea += fresnel * SkyShrmRadiance(reflect(ray, n), sqrt(shrm_variance.x * shrm_variance.y));
+#else
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
@@ -79,6 +94,7 @@ void main() {
 #else
   sea += fresnel * SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
 #endif
+#endif  // SKY_SHRM
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);

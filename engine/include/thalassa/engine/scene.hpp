@@ -80,7 +80,8 @@ struct OceanSettings {
   double deep_reflectance_r = 0.004;
   double deep_reflectance_g = 0.016;
   double deep_reflectance_b = 0.047;
-  // The sky reflection's filter: "texture_grad" (eq. 27) or "nine_samples" (sec. 7.2).
+  // The sky reflection's filter: "texture_grad" (eq. 27), "nine_samples" (sec. 7.2) or "shrm"
+  // (sky maps prefiltered in spherical harmonics, Ramamoorthi & Hanrahan 2002).
   std::string sky_filter = "texture_grad";
 };
 

@@ -23,6 +23,10 @@ struct OceanNodeOptions {
   bool air = true;         // the in-scattered light between the camera and the sea
   // Eq. 27's single anisotropic fetch (false) or the average of nine samples (true).
   bool sky_nine_samples = false;
+  // Ramamoorthi & Hanrahan 2002's frequency-space prefiltering instead (overrides
+  // sky_nine_samples): the sky term reads glossy sky maps (atmosphere/gl/sky_shrm.hpp) and L_sea
+  // takes the sky's irradiance from the same SH projection.
+  bool sky_shrm = false;
   // All sky light: the sky map, sun radiance, irradiance and aerial perspective.
   std::shared_ptr<atmosphere::SkyProvider> provider;
 };
