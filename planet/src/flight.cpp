@@ -268,7 +268,7 @@ FlightKeyframe parse_keyframe(const json& k, std::string_view source, const std:
 // ---------------------------------------------------------------------------------------------
 // MonotoneCubic
 
-MonotoneCubic::MonotoneCubic(std::vector<double> t, std::vector<double> v)
+MonotoneCubic::MonotoneCubic(std::vector<double> t, std::vector<double> v, End start, End end)
     : t_(std::move(t)), v_(std::move(v)) {
   const std::size_t n = t_.size();
   if (n == 0 || v_.size() != n)
@@ -284,7 +284,10 @@ MonotoneCubic::MonotoneCubic(std::vector<double> t, std::vector<double> v)
     secant[i] = (v_[i + 1] - v_[i]) / h[i];
   }
   if (n == 2) {
-    slope_[0] = slope_[1] = secant[0];  // the straight line
+    // The straight line, unless an end is flat (any slope between 0 and the secant's sign keeps
+    // the piece monotone).
+    slope_[0] = start == End::Flat ? 0.0 : secant[0];
+    slope_[1] = end == End::Flat ? 0.0 : secant[0];
     return;
   }
   // Inside: the weighted harmonic mean of the two secants (Fritsch & Butland), 0 at an extremum
@@ -306,8 +309,9 @@ MonotoneCubic::MonotoneCubic(std::vector<double> t, std::vector<double> v)
     }
     return m;
   };
-  slope_[0] = end_slope(h[0], h[1], secant[0], secant[1]);
-  slope_[n - 1] = end_slope(h[n - 2], h[n - 3], secant[n - 2], secant[n - 3]);
+  slope_[0] = start == End::Flat ? 0.0 : end_slope(h[0], h[1], secant[0], secant[1]);
+  slope_[n - 1] =
+      end == End::Flat ? 0.0 : end_slope(h[n - 2], h[n - 3], secant[n - 2], secant[n - 3]);
 }
 
 namespace {
@@ -485,7 +489,13 @@ void Flight::build_channels() {
     }
     if (space.empty()) continue;
     animated_.push_back(key_of(channel));
-    splines_[c] = MonotoneCubic(key_times_[c], std::move(space));
+    // Held before the first key or after the last within the flight: ease in or out there.
+    const double last_frame = frame_time(frame_count_ - 1);
+    const auto start =
+        key_times_[c].front() > 0.0 ? MonotoneCubic::End::Flat : MonotoneCubic::End::Natural;
+    const auto end =
+        key_times_[c].back() < last_frame ? MonotoneCubic::End::Flat : MonotoneCubic::End::Natural;
+    splines_[c] = MonotoneCubic(key_times_[c], std::move(space), start, end);
   }
   utc_times_.clear();
   utc_seconds_.clear();
@@ -606,7 +616,8 @@ std::string Flight::scene_source_of(std::string_view key) const {
 // The flight `thalassa fly` renders with no file; data/flights/orbit_to_surface.json holds the
 // same document (tests/unit/flight_test.cpp checks it). Over the Pacific at sunset: the sun 2
 // degrees above the western horizon; the camera descends from 400 km to 2 m, evenly in the
-// logarithm of its height, facing west, and turns from straight down to just below the horizon.
+// logarithm of its height, facing west, and turns from straight down to just below the horizon,
+// settling there over the last 3 s (the pitch keyframe at 17 s makes the end slope flat).
 std::string_view default_flight_json() {
   return R"json({
   "description": "From orbit to the sea at sunset: 400 km down to 2 m in 20 s, facing the setting sun, turning from straight down to the horizon.",
@@ -620,6 +631,7 @@ std::string_view default_flight_json() {
   "keyframes": [
     {"time": 0, "camera": {"height": 400000, "pitch": -90}},
     {"time": 10, "camera": {"pitch": -60}},
+    {"time": 17, "camera": {"pitch": -5}},
     {"time": 20, "camera": {"height": 2, "pitch": -3}}
   ]
 }

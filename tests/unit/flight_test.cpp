@@ -130,6 +130,24 @@ TEST(MonotoneCubic, NeverLeavesTheRangeOfItsTwoNeighbouringKeys) {
   }
 }
 
+TEST(MonotoneCubic, FlatEndsEaseInAndOut) {
+  const MonotoneCubic natural({0.0, 1.0}, {0.0, 1.0});
+  const MonotoneCubic flat({0.0, 1.0}, {0.0, 1.0}, MonotoneCubic::End::Flat,
+                           MonotoneCubic::End::Flat);
+  EXPECT_DOUBLE_EQ(natural.derivative(0.0), 1.0);
+  EXPECT_EQ(flat.derivative(0.0), 0.0);
+  EXPECT_EQ(flat.derivative(1.0), 0.0);
+  EXPECT_NEAR(flat(0.5), 0.5, 1e-12);  // smoothstep: symmetric
+  const MonotoneCubic three({0.0, 1.0, 3.0}, {0.0, 2.0, 3.0}, MonotoneCubic::End::Natural,
+                            MonotoneCubic::End::Flat);
+  EXPECT_GT(three.derivative(0.0), 0.0);
+  EXPECT_EQ(three.derivative(3.0), 0.0);
+  for (double t = 0.0; t <= 3.0; t += 0.01) {
+    EXPECT_GE(three(t), 0.0);
+    EXPECT_LE(three(t), 3.0);
+  }
+}
+
 TEST(MonotoneCubic, RefusesBadKeys) {
   EXPECT_THROW(MonotoneCubic({}, {}), std::invalid_argument);
   EXPECT_THROW(MonotoneCubic({0.0, 1.0}, {1.0}), std::invalid_argument);
@@ -203,6 +221,31 @@ TEST(Flight, ChannelsAreC1AtInnerKeyframes) {
     const double right = (channel(t + kStep) - channel(t)) / kStep;
     EXPECT_NEAR(left, right, 1e-3 * (1.0 + std::fabs(left)));
   }
+}
+
+TEST(Flight, ChannelsHeldWithinTheFlightStayC1WhereTheHoldBegins) {
+  // Pitch has keys at 1 and 3 s in a flight of 0 to 4 s: held before 1 s and after 3 s, it eases
+  // in and out there; height, keyed at the flight's ends, keeps its pace (the straight line in
+  // log height).
+  const Flight f = Flight::parse(flight_text(R"([{"time": 0, "camera": {"height": 1000}},
+                      {"time": 1, "camera": {"pitch": -80}},
+                      {"time": 3, "camera": {"pitch": -10}},
+                      {"time": 4, "camera": {"height": 10}}])"),
+                                 "f.json");
+  constexpr double kStep = 1e-5;  // s
+  const auto pitch = [&](double t) { return *f.sample(t).pitch; };
+  for (double key : {1.0, 3.0}) {
+    const double left = (pitch(key) - pitch(key - kStep)) / kStep;
+    const double right = (pitch(key + kStep) - pitch(key)) / kStep;
+    EXPECT_NEAR(left, 0.0, 1e-3) << key;
+    EXPECT_NEAR(right, 0.0, 1e-3) << key;
+  }
+  const auto log_height = [&](double t) {
+    return std::log(*f.sample(t).height + kFlightHeightOffset);
+  };
+  const double pace = (log_height(4.0) - log_height(0.0)) / 4.0;
+  EXPECT_NEAR((log_height(kStep) - log_height(0.0)) / kStep, pace, 1e-6);
+  EXPECT_NEAR(log_height(2.0), 0.5 * (log_height(0.0) + log_height(4.0)), 1e-9);
 }
 
 TEST(Flight, ExactValuesAtKeyframeTimes) {

@@ -6,7 +6,9 @@
 // .fov_y, sun.zenith, .azimuth, .utc has its own keys: the keyframes that give it). Every numeric
 // channel is a monotone cubic Hermite spline (Fritsch-Carlson, the "PCHIP" of MATLAB and SciPy):
 // C1 in time, exact at the keys, and never outside the range of its two neighbouring keys, so a
-// camera never overshoots a keyframe (below the sea, past the pole, beyond straight down).
+// camera never overshoots a keyframe (below the sea, past the pole, beyond straight down). A
+// channel whose first key comes after the flight's start, or whose last key before its last
+// frame, eases in or out there (zero speed), so that holding it beyond stays C1.
 // Heights are interpolated in log(height + kFlightHeightOffset), so that a descent spends equal
 // times on equal ratios of height; angles the short way round (a difference of exactly 180
 // degrees turns clockwise). sun.utc is interpolated linearly in time. Before a channel's first
@@ -62,9 +64,15 @@ struct FlightKeyframe {
 // its two end values. With two points it is the straight line. Constant outside [t_0, t_n].
 class MonotoneCubic {
  public:
+  // The slope at an end key: the three-point formula (the curve runs on at its own pace; with
+  // two keys, the straight line), or zero (it eases in or out, so that holding the value beyond
+  // that key keeps the curve C1).
+  enum class End { Natural, Flat };
+
   MonotoneCubic() = default;
   // Throws std::invalid_argument unless t and v have the same size >= 1 and t strictly increases.
-  MonotoneCubic(std::vector<double> t, std::vector<double> v);
+  MonotoneCubic(std::vector<double> t, std::vector<double> v, End start = End::Natural,
+                End end = End::Natural);
   double operator()(double t) const;  // v_i exactly at t_i
   double derivative(double t) const;  // dv/dt (0 outside [t_0, t_n])
 
