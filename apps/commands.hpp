@@ -41,15 +41,28 @@ struct SkyArgs {
   std::string backend;  // empty: the default headless backend
 };
 
+struct FlyArgs {
+  std::string flight;  // empty: the embedded default flight
+  std::string dir;     // folder of the frames
+  std::string frames;  // "A:B" (inclusive); empty: all
+  std::string video;   // empty: no MP4
+  std::vector<std::string> sets;
+  std::string stats;
+  std::string backend;  // empty: the default headless backend
+  bool float_exr = false;
+};
+
 struct InfoArgs {
   std::string backend;
 };
 
 void add_render_command(CLI::App& app, RenderArgs& args);
 void add_sky_command(CLI::App& app, SkyArgs& args);
+void add_fly_command(CLI::App& app, FlyArgs& args);
 void add_info_command(CLI::App& app, InfoArgs& args);
 int run_render(const RenderArgs& args);
 int run_sky(const SkyArgs& args);
+int run_fly(const FlyArgs& args);
 int run_info(const InfoArgs& args);
 
 // Prints "thalassa: <message>" on stderr.

@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <thread>
 
@@ -105,9 +107,9 @@ bool load_cache(const std::string& path, const std::string& key, ModelTables& ta
   if (!in || stored != key) return false;
   tables.transmittance =
       glsl::Texture2D(glsl::TRANSMITTANCE_TEXTURE_WIDTH, glsl::TRANSMITTANCE_TEXTURE_HEIGHT);
-  tables.scattering = glsl::Texture3D(glsl::SCATTERING_TEXTURE_WIDTH,
-                                      glsl::SCATTERING_TEXTURE_HEIGHT,
-                                      glsl::SCATTERING_TEXTURE_DEPTH);
+  tables.scattering =
+      glsl::Texture3D(glsl::SCATTERING_TEXTURE_WIDTH, glsl::SCATTERING_TEXTURE_HEIGHT,
+                      glsl::SCATTERING_TEXTURE_DEPTH);
   tables.single_mie_scattering = tables.scattering;
   tables.irradiance =
       glsl::Texture2D(glsl::IRRADIANCE_TEXTURE_WIDTH, glsl::IRRADIANCE_TEXTURE_HEIGHT);
@@ -124,9 +126,9 @@ std::string store_cache(const std::string& path, const std::string& key,
   std::error_code ec;
   fs::create_directories(fs::path(path).parent_path(), ec);
   if (ec) return "cannot create " + fs::path(path).parent_path().string() + ": " + ec.message();
-  const std::string temporary = path + ".tmp" + std::to_string(::getpid()) + "-" +
-                                std::to_string(std::hash<std::thread::id>()(
-                                    std::this_thread::get_id()));
+  const std::string temporary =
+      path + ".tmp" + std::to_string(::getpid()) + "-" +
+      std::to_string(std::hash<std::thread::id>()(std::this_thread::get_id()));
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) return "cannot write " + temporary;
@@ -161,7 +163,8 @@ glsl::vec3 dv(const glm::dvec3& v) { return glsl::vec3(v.x, v.y, v.z); }
 struct AtmosphereModel::State {
   AtmosphereParameters parameters;
   glsl::AtmosphereParameters atmosphere;
-  ModelTables tables;
+  // Immutable once built; shared by the models of the same parameters alive in the process.
+  std::shared_ptr<const ModelTables> tables;
   double precompute_seconds = 0.0;
   double load_seconds = 0.0;
   std::string cache_status;
@@ -170,6 +173,23 @@ struct AtmosphereModel::State {
 
 AtmosphereModel::AtmosphereModel() : state_(std::make_unique<State>()) {}
 AtmosphereModel::~AtmosphereModel() = default;
+
+namespace {
+
+// The tables of the models alive in this process, by cache key: a program that creates a
+// renderer per frame (thalassa fly) reads the cache file once, not per frame (about 40 ms each).
+// Weak, so that the tables go when the last model using them does.
+struct LiveTables {
+  std::mutex mutex;
+  std::map<std::string, std::weak_ptr<const ModelTables>> by_key;
+};
+
+LiveTables& live_tables() {
+  static LiveTables live;
+  return live;
+}
+
+}  // namespace
 
 std::shared_ptr<const AtmosphereModel> AtmosphereModel::create(
     const AtmosphereParameters& parameters, const PrecomputeOptions& options) {
@@ -181,22 +201,48 @@ std::shared_ptr<const AtmosphereModel> AtmosphereModel::create(
 
   const std::string key = cache_key(parameters);
   const std::string dir = options.cache_dir.empty() ? default_cache_dir() : options.cache_dir;
-  if (options.use_cache && !dir.empty()) {
-    s.cache_path = dir + "/" + cache_file_name(key);
+  if (options.use_cache && !dir.empty()) s.cache_path = dir + "/" + cache_file_name(key);
+  // Tables in memory already: the same key gives the same tables (the key holds every parameter
+  // and the table layout), whichever cache folder they came from.
+  if (options.use_cache && options.share_in_process) {
+    LiveTables& live = live_tables();
+    const std::lock_guard<std::mutex> lock(live.mutex);
+    const auto it = live.by_key.find(key);
+    if (it != live.by_key.end()) {
+      if (auto tables = it->second.lock()) {
+        s.tables = std::move(tables);
+        s.cache_status = "shared";
+        return model;
+      }
+    }
+  }
+  auto register_tables = [&] {
+    if (!options.use_cache) return;
+    LiveTables& live = live_tables();
+    const std::lock_guard<std::mutex> lock(live.mutex);
+    for (auto it = live.by_key.begin(); it != live.by_key.end();)  // forget expired entries
+      it = it->second.expired() ? live.by_key.erase(it) : std::next(it);
+    live.by_key[key] = s.tables;
+  };
+
+  auto tables = std::make_shared<ModelTables>();
+  if (!s.cache_path.empty()) {
     const auto start = std::chrono::steady_clock::now();
-    if (load_cache(s.cache_path, key, s.tables)) {
+    if (load_cache(s.cache_path, key, *tables)) {
       s.load_seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       s.cache_status = "loaded";
+      s.tables = std::move(tables);
+      register_tables();
       return model;
     }
   }
 
-  int threads = options.threads > 0 ? options.threads
-                                    : static_cast<int>(std::thread::hardware_concurrency());
+  int threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
   if (threads < 1) threads = 1;
   const auto start = std::chrono::steady_clock::now();
-  precompute_tables(parameters, threads, s.tables);
+  precompute_tables(parameters, threads, *tables);
   s.precompute_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
@@ -205,9 +251,11 @@ std::shared_ptr<const AtmosphereModel> AtmosphereModel::create(
   } else if (dir.empty()) {
     s.cache_status = "computed (no cache folder: set THALASSA_CACHE_DIR or HOME)";
   } else {
-    const std::string error = store_cache(s.cache_path, key, s.tables);
+    const std::string error = store_cache(s.cache_path, key, *tables);
     s.cache_status = error.empty() ? "computed" : "computed (cache not written: " + error + ")";
   }
+  s.tables = std::move(tables);
+  register_tables();
   return model;
 }
 
@@ -216,28 +264,26 @@ double AtmosphereModel::precompute_seconds() const { return state_->precompute_s
 double AtmosphereModel::load_seconds() const { return state_->load_seconds; }
 const std::string& AtmosphereModel::cache_status() const { return state_->cache_status; }
 const std::string& AtmosphereModel::cache_path() const { return state_->cache_path; }
-const ModelTables& AtmosphereModel::tables() const { return state_->tables; }
+const ModelTables& AtmosphereModel::tables() const { return *state_->tables; }
 
 glm::dvec3 AtmosphereModel::sky_radiance(const glm::dvec3& camera, const glm::dvec3& view,
                                          const glm::dvec3& sun_direction,
                                          glm::dvec3* transmittance) const {
   glsl::vec3 t;
-  const glsl::vec3 l = glsl::GetSkyRadiance(state_->atmosphere, state_->tables.transmittance,
-                                            state_->tables.scattering,
-                                            state_->tables.single_mie_scattering, dv(camera),
-                                            dv(view), dv(sun_direction), t);
+  const glsl::vec3 l = glsl::GetSkyRadiance(
+      state_->atmosphere, state_->tables->transmittance, state_->tables->scattering,
+      state_->tables->single_mie_scattering, dv(camera), dv(view), dv(sun_direction), t);
   if (transmittance) *transmittance = t;
   return l;
 }
 
-glm::dvec3 AtmosphereModel::sky_radiance_to_point(const glm::dvec3& camera,
-                                                  const glm::dvec3& point,
+glm::dvec3 AtmosphereModel::sky_radiance_to_point(const glm::dvec3& camera, const glm::dvec3& point,
                                                   const glm::dvec3& sun_direction,
                                                   glm::dvec3* transmittance) const {
   glsl::vec3 t;
   const glsl::vec3 l = glsl::GetSkyRadianceToPoint(
-      state_->atmosphere, state_->tables.transmittance, state_->tables.scattering,
-      state_->tables.single_mie_scattering, dv(camera), dv(point), dv(sun_direction), t);
+      state_->atmosphere, state_->tables->transmittance, state_->tables->scattering,
+      state_->tables->single_mie_scattering, dv(camera), dv(point), dv(sun_direction), t);
   if (transmittance) *transmittance = t;
   return l;
 }
@@ -246,7 +292,7 @@ glm::dvec3 AtmosphereModel::sun_transmittance(const glm::dvec3& point,
                                               const glm::dvec3& sun_direction) const {
   const double r = glm::length(point);
   const double mu_s = glm::clamp(glm::dot(point, sun_direction) / r, -1.0, 1.0);
-  return glsl::GetTransmittanceToSun(state_->atmosphere, state_->tables.transmittance,
+  return glsl::GetTransmittanceToSun(state_->atmosphere, state_->tables->transmittance,
                                      glsl::ClampRadius(state_->atmosphere, r), mu_s);
 }
 
@@ -264,7 +310,7 @@ glm::dvec3 AtmosphereModel::sun_and_sky_irradiance(const glm::dvec3& point,
                                                    glm::dvec3* sky_irradiance) const {
   glsl::vec3 sky;
   const glsl::vec3 sun = glsl::GetSunAndSkyIrradiance(
-      state_->atmosphere, state_->tables.transmittance, state_->tables.irradiance, dv(point),
+      state_->atmosphere, state_->tables->transmittance, state_->tables->irradiance, dv(point),
       dv(normal), dv(sun_direction), sky);
   if (sky_irradiance) *sky_irradiance = sky;
   return sun;

@@ -435,18 +435,24 @@ std::string suggestion(std::string_view unknown) {
   return best_distance <= limit ? best : std::string{};
 }
 
-[[noreturn]] void fail_unknown(std::string_view source, std::string_view path) {
+// `prefix` is put in front of the key path in the message (a scene nested in another file).
+[[noreturn]] void fail_unknown(std::string_view source, std::string_view path,
+                               std::string_view prefix = {}) {
   const std::string near = suggestion(path);
   fail(
-      source, path,
+      source, std::string(prefix) + std::string(path),
       near.empty() ? "a known key (see docs/scene.md)" : "a known key (did you mean " + near + "?)",
       "an unknown key");
 }
 
 // Checks one value against its key and returns it in canonical form (numbers as doubles,
 // integers as integers), so that merged_json() does not depend on how a value was spelled.
-json checked(const KeyDesc& k, const json& v, std::string_view source) {
-  auto bad = [&]() { fail(source, k.path, expectation(k), describe(v)); };
+// Messages name the key as `prefix` + its path.
+json checked(const KeyDesc& k, const json& v, std::string_view source,
+             std::string_view prefix = {}) {
+  auto bad = [&]() {
+    fail(source, std::string(prefix) + std::string(k.path), expectation(k), describe(v));
+  };
   switch (k.kind) {
     case Kind::Number:
     case Kind::Integer: {
@@ -636,15 +642,18 @@ struct SceneBuilder::Impl {
   std::map<std::string, Given, std::less<>> given;  // keys set by a file or --set
   std::uint64_t next_order = 1;
 
-  // Lays a parsed document over `values`; all or nothing.
-  void lay(const json& doc, std::string_view source, bool explicit_input) {
+  // Lays a parsed document over `values`; all or nothing. Messages name keys as `prefix` + path
+  // (a scene nested in another file, e.g. "scene.").
+  void lay(const json& doc, std::string_view source, bool explicit_input,
+           std::string_view prefix = {}) {
     if (!doc.is_object()) {
       fail(source, "", "a JSON object of sections at the top level", describe(doc));
     }
+    const auto named = [&](const std::string& path) { return std::string(prefix) + path; };
     auto staged_values = values;
     auto staged_given = given;
     auto put = [&](const KeyDesc& k, const json& v) {
-      staged_values[std::string(k.path)] = checked(k, v, source);
+      staged_values[std::string(k.path)] = checked(k, v, source, prefix);
       if (explicit_input) staged_given[std::string(k.path)] = {std::string(source), next_order};
     };
     for (const auto& [name, value] : doc.items()) {
@@ -654,23 +663,23 @@ struct SceneBuilder::Impl {
       } else if (k) {
         // One spelling per key, so that a file cannot give a key twice.
         const auto section = std::string(section_of(name));
-        fail(source, name,
+        fail(source, named(name),
              "the key inside its section, {\"" + section + "\": {\"" +
                  name.substr(section.size() + 1) + "\": ...}}",
              "a dotted name at the top level");
       } else if (is_section(name)) {
         if (!value.is_object()) {
-          fail(source, name, "an object (a section of keys such as " + name + ".*)",
+          fail(source, named(name), "an object (a section of keys such as " + name + ".*)",
                describe(value));
         }
         for (const auto& [member, member_value] : value.items()) {
           const std::string path = name + "." + member;
           const KeyDesc* mk = find_key(path);
-          if (!mk) fail_unknown(source, path);
+          if (!mk) fail_unknown(source, path, prefix);
           put(*mk, member_value);
         }
       } else {
-        fail_unknown(source, name);
+        fail_unknown(source, name, prefix);
       }
     }
     values = std::move(staged_values);
@@ -709,6 +718,11 @@ SceneBuilder& SceneBuilder::operator=(SceneBuilder&& other) noexcept {
 }
 
 void SceneBuilder::load_text(std::string_view json_text, std::string_view source) {
+  load_text(json_text, source, {});
+}
+
+void SceneBuilder::load_text(std::string_view json_text, std::string_view source,
+                             std::string_view key_prefix) {
   json doc;
   // JSON allows an object to repeat a key and nlohmann keeps the last; a scene must not (one
   // key, one value), so repeats are caught while parsing. `path` holds the keys of the objects
@@ -728,8 +742,9 @@ void SceneBuilder::load_text(std::string_view json_text, std::string_view source
         path.resize(depth);
         path.push_back(key);
         if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-          std::string dotted;
-          for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
+          std::string dotted(key_prefix);
+          for (const auto& part : path)
+            dotted += (dotted.size() == key_prefix.size() ? "" : ".") + part;
           fail(source, dotted, "each key once", "\"" + key + "\" a second time");
         }
         keys.push_back(key);
@@ -752,7 +767,7 @@ void SceneBuilder::load_text(std::string_view json_text, std::string_view source
     // A number literal too large for a double ("1e999") has no position.
     fail(source, "", "valid JSON", parse_reason(e));
   }
-  impl_->lay(doc, source, true);
+  impl_->lay(doc, source, true, key_prefix);
 }
 
 void SceneBuilder::load_file(const std::string& path) {
@@ -856,6 +871,53 @@ std::string_view default_scene_json() {
     }
     return doc.dump(2) + "\n";
   }();
+  return text;
+}
+
+void check_scene_value(std::string_view key, std::string_view value_json, std::string_view source,
+                       std::string_view key_prefix) {
+  const KeyDesc* k = find_key(key);
+  if (!k) throw std::invalid_argument("check_scene_value: unknown scene key " + std::string(key));
+  const json value = json::parse(value_json, nullptr, false);
+  if (value.is_discarded()) {
+    fail(source, std::string(key_prefix) + std::string(key), expectation(*k),
+         "\"" + std::string(value_json) + "\" (not JSON)");
+  }
+  checked(*k, value, source, key_prefix);
+}
+
+std::optional<double> parse_utc_seconds(std::string_view utc) {
+  const std::optional<UtcTime> t = parse_utc(utc);
+  if (!t) return std::nullopt;
+  constexpr double kSecondsPerDay = 86400.0;
+  return static_cast<double>(days_from_civil(t->year, t->month, t->day)) * kSecondsPerDay +
+         t->hour * 3600.0 + t->minute * 60.0 + t->second;
+}
+
+std::string format_utc(double seconds) {
+  // Whole milliseconds, so that the text is exact and reads back to within 0.5 ms.
+  const auto ms = static_cast<std::int64_t>(std::llround(seconds * 1e3));
+  constexpr std::int64_t kMsPerDay = 86400000;
+  std::int64_t days = ms / kMsPerDay;
+  std::int64_t in_day = ms % kMsPerDay;
+  if (in_day < 0) {
+    in_day += kMsPerDay;
+    --days;
+  }
+  // H. Hinnant's civil_from_days, the inverse of days_from_civil.
+  const std::int64_t z = days + 719468;
+  const std::int64_t era = (z >= 0 ? z : z - 146096) / 146097;
+  const std::int64_t doe = z - era * 146097;
+  const std::int64_t yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const std::int64_t doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const std::int64_t mp = (5 * doy + 2) / 153;
+  const int day = static_cast<int>(doy - (153 * mp + 2) / 5 + 1);
+  const int month = static_cast<int>(mp < 10 ? mp + 3 : mp - 9);
+  const auto year = static_cast<long long>(yoe + era * 400 + (month <= 2));
+  char text[48];
+  std::snprintf(text, sizeof text, "%04lld-%02d-%02dT%02d:%02d:%02d.%03dZ", year, month, day,
+                static_cast<int>(in_day / 3600000), static_cast<int>(in_day / 60000 % 60),
+                static_cast<int>(in_day / 1000 % 60), static_cast<int>(in_day % 1000));
   return text;
 }
 

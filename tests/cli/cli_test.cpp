@@ -506,3 +506,167 @@ TEST_F(Cli, HdrPhotographLightsTheScene) {
 }
 
 }  // namespace
+
+// --- thalassa fly ------------------------------------------------------------------------------
+
+// A short descent: 5 frames at 4 frames per second, 200 m to 2 m, turning to the horizon.
+const std::string kShortFlight = R"({
+  "fps": 4, "duration": 1,
+  "keyframes": [
+    {"time": 0, "camera": {"height": 200, "pitch": -60, "heading": 350}},
+    {"time": 1, "camera": {"height": 2, "pitch": -5, "heading": 10}}
+  ]
+})";
+
+std::string frame_file(int frame, const std::string& extension) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05d%s", frame, extension.c_str());
+  return name;
+}
+
+std::map<std::string, std::string> metadata_of(const fs::path& exr) {
+  thalassa::Metadata metadata;
+  thalassa::read_image(exr.string(), &metadata);
+  return {metadata.begin(), metadata.end()};
+}
+
+TEST_F(Cli, FlyWritesEveryFrameAsExrAndPng) {
+  write("flight.json", kShortFlight);
+  const Result r = run("fly flight.json -o out " + kSmall + " --stats stats.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::vector<std::string> expected;
+  for (int i = 0; i < 5; ++i) {
+    expected.push_back(frame_file(i, ".exr"));
+    expected.push_back(frame_file(i, ".png"));
+  }
+  std::vector<std::string> written;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out"))
+    written.push_back(entry.path().filename());
+  std::sort(written.begin(), written.end());
+  EXPECT_EQ(written, expected);
+  // Not a terminal: one line per frame on stderr.
+  for (int i = 0; i < 5; ++i)
+    EXPECT_NE(r.err.find(frame_file(i, "") + " [" + std::to_string(i + 1) + "/5]"),
+              std::string::npos)
+        << r.err;
+  // Each frame's metadata holds its own camera: the keyframes' at both ends.
+  auto first = metadata_of(dir_ / "out" / frame_file(0, ".exr"));
+  auto last = metadata_of(dir_ / "out" / frame_file(4, ".exr"));
+  EXPECT_EQ(nlohmann::json::parse(first["thalassa:scene"])["camera"]["height"], 200.0);
+  EXPECT_EQ(nlohmann::json::parse(last["thalassa:scene"])["camera"]["height"], 2.0);
+  EXPECT_EQ(nlohmann::json::parse(last["thalassa:scene"])["camera"]["heading"], 10.0);
+  EXPECT_EQ(nlohmann::json::parse(last["thalassa:scene"])["time"], 1.0);
+  EXPECT_EQ(last["thalassa:flight"], "flight.json frame=4 t=1 fps=4");
+  const thalassa::Image png = thalassa::read_image((dir_ / "out" / frame_file(2, ".png")).string());
+  EXPECT_EQ(png.width, 32);
+  EXPECT_EQ(png.height, 24);
+  std::ifstream in(dir_ / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["frames_rendered"], 5);
+  EXPECT_EQ(stats["frames_skipped"], 0);
+  EXPECT_EQ(stats["mode"], "surface");
+  EXPECT_EQ(stats["frames"].size(), 5u);
+  EXPECT_GT(stats["frame_ms"].get<double>(), 0.0);
+}
+
+TEST_F(Cli, FlyFramesRendersOnlyThatSlice) {
+  write("flight.json", kShortFlight);
+  ASSERT_EQ(run("fly flight.json -o out --frames 1:2 " + kSmall).status, 0);
+  std::vector<std::string> written;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out"))
+    written.push_back(entry.path().filename());
+  std::sort(written.begin(), written.end());
+  EXPECT_EQ(written, (std::vector<std::string>{frame_file(1, ".exr"), frame_file(1, ".png"),
+                                               frame_file(2, ".exr"), frame_file(2, ".png")}));
+}
+
+TEST_F(Cli, FlyRerunSkipsFramesAlreadyWritten) {
+  write("flight.json", kShortFlight);
+  ASSERT_EQ(run("fly flight.json -o out --frames 0:1 " + kSmall).status, 0);
+  const auto exr0 = dir_ / "out" / frame_file(0, ".exr");
+  const auto time0 = fs::last_write_time(exr0);
+  const Result r = run("fly flight.json -o out " + kSmall + " --stats stats.json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find(frame_file(0, "") + " [1/5]: skipped"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(frame_file(1, "") + " [2/5]: skipped"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(frame_file(2, "") + " [3/5]: skipped"), std::string::npos) << r.err;
+  EXPECT_EQ(fs::last_write_time(exr0), time0);
+  std::ifstream in(dir_ / "stats.json");
+  const nlohmann::json stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["frames_rendered"], 3);
+  EXPECT_EQ(stats["frames_skipped"], 2);
+  // A frame whose PNG is missing or whose scene changed is rendered again.
+  fs::remove(dir_ / "out" / frame_file(3, ".png"));
+  const Result again = run("fly flight.json -o out --frames 2:3 " + kSmall);
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_NE(again.err.find(frame_file(2, "") + " [1/2]: skipped"), std::string::npos);
+  EXPECT_EQ(again.err.find(frame_file(3, "") + " [2/2]: skipped"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / frame_file(3, ".png")));
+  const Result changed =
+      run("fly flight.json -o out --frames 0:0 " + kSmall + " --set ocean.wind_speed=3");
+  ASSERT_EQ(changed.status, 0) << changed.err;
+  EXPECT_EQ(changed.err.find("]: skipped"), std::string::npos) << changed.err;
+  EXPECT_EQ(nlohmann::json::parse(metadata_of(exr0)["thalassa:scene"])["ocean"]["wind_speed"], 3.0);
+}
+
+TEST_F(Cli, FlyInvalidInputExitsWith2AndWritesNothing) {
+  write("bad.json", R"({"keyframes": [{"time": 0}, {"time": 1, "camera": {"height": "x"}}]})");
+  expect_invalid(
+      run("fly bad.json -o out " + kSmall),
+      {"bad.json: keyframes[1].camera.height: expected a number in [0, 1e9] (m", "got \"x\""});
+  write("order.json", R"({"keyframes": [{"time": 2}, {"time": 1}]})");
+  expect_invalid(run("fly order.json -o out"),
+                 {"order.json: keyframes[1].time: expected a time after keyframes[0].time (2 s)"});
+  write("flight.json", kShortFlight);
+  expect_invalid(run("fly flight.json -o out --frames 3:9 " + kSmall),
+                 {"--frames 3:9: expected A:B with 0 <= A <= B <= 4"});
+  expect_invalid(run("fly flight.json -o out --frames 2:1"), {"--frames 2:1"});
+  expect_invalid(run("fly flight.json -o out --set camera.height=5"),
+                 {"--set: camera.height: expected a key the flight's keyframes do not animate"});
+  expect_invalid(run("fly flight.json -o out --set image.width=0"), {"--set: image.width"});
+  expect_invalid(run("fly missing.json -o out"), {"missing.json: expected a readable flight file"});
+  expect_invalid(run("fly flight.json -o out --video out.avi"), {"--video out.avi", ".mp4"});
+  write("file", "");
+  expect_invalid(run("fly flight.json -o file"), {"-o file: expected a folder, got a file"});
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, FlyWithNoFileRendersTheDefaultFlight) {
+  const Result r = run("fly -o out --frames 0:0 " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto meta = metadata_of(dir_ / "out" / frame_file(0, ".exr"));
+  const auto scene = nlohmann::json::parse(meta["thalassa:scene"]);
+  EXPECT_EQ(scene["camera"]["height"], 400000.0);
+  EXPECT_EQ(scene["sun"]["zenith"], 88.0);
+  EXPECT_EQ(meta["thalassa:flight"], "default flight frame=0 t=0 fps=24");
+  EXPECT_EQ(meta["thalassa:mode"], "space");
+}
+
+TEST_F(Cli, FlyVideoEncodesTheFramesWithFfmpeg) {
+  write("flight.json", kShortFlight);
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
+    GTEST_SKIP() << "ffmpeg is not installed (scripts/setup installs it): --video not tested";
+  // An odd size is padded to even for 4:2:0.
+  const Result r =
+      run("fly flight.json -o out --video flight.mp4 --set image.width=33 "
+          "--set image.height=24");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_TRUE(fs::exists(dir_ / "flight.mp4"));
+  std::ifstream in(dir_ / "flight.mp4", std::ios::binary);
+  char head[8] = {};
+  in.read(head, sizeof head);
+  EXPECT_EQ(std::string(head + 4, 4), "ftyp");  // an ISO base media (MP4) file
+  EXPECT_GT(fs::file_size(dir_ / "flight.mp4"), 1000u);
+  // Nothing left beside it: no pending file, no ffmpeg log.
+  for (const std::string& name : files())
+    EXPECT_TRUE(name == "flight.json" || name == "flight.mp4" || name == "out") << name;
+}
+
+TEST_F(Cli, FlyVideoWithoutFfmpegExitsWith1BeforeRendering) {
+  write("flight.json", kShortFlight);
+  const Result r = run("fly flight.json -o out --video flight.mp4 " + kSmall, "PATH=/nonexistent ");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("ffmpeg is not installed"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  EXPECT_FALSE(fs::exists(dir_ / "flight.mp4"));
+}

@@ -703,10 +703,49 @@ class ScratchFolder {
   std::filesystem::path path_;
 };
 
+TEST(AtmosphereCache, ModelsAliveInTheProcessShareTheirTables) {
+  // Parameters of their own (another ground albedo: another key), with a cache file of their own
+  // in a scratch folder (the default tables stored under that key: the content does not matter
+  // here), so that no other model of this process is involved.
+  const ScratchFolder folder("atmosphere-share");
+  AtmosphereParameters p = AtmosphereParameters::earth();
+  p.ground_albedo = glm::dvec3(0.123);
+  const std::string key = cache_key(p);
+  ASSERT_EQ(store_cache((folder.path() / cache_file_name(key)).string(), key, Model().tables()),
+            "");
+  PrecomputeOptions options;
+  options.cache_dir = folder.path().string();
+  {
+    const auto first = AtmosphereModel::create(p, options);
+    EXPECT_EQ(first->cache_status(), "loaded");
+    const auto second = AtmosphereModel::create(p, options);
+    EXPECT_EQ(second->cache_status(), "shared");
+    EXPECT_EQ(&second->tables(), &first->tables());  // the same memory, not a copy
+    EXPECT_EQ(second->load_seconds(), 0.0);
+    EXPECT_EQ(second->precompute_seconds(), 0.0);
+    EXPECT_EQ(second->cache_path(), first->cache_path());
+    // The models are apart; only the tables are shared.
+    EXPECT_NE(second.get(), first.get());
+    EXPECT_EQ(second->parameters().ground_albedo, p.ground_albedo);
+    // Told not to share: read from the file again.
+    PrecomputeOptions apart = options;
+    apart.share_in_process = false;
+    const auto third = AtmosphereModel::create(p, apart);
+    EXPECT_EQ(third->cache_status(), "loaded");
+    EXPECT_NE(&third->tables(), &first->tables());
+    EXPECT_TRUE(SameTables(third->tables(), first->tables()));
+  }
+  // Once no model holds them the tables are gone (the map is weak): the next model reads the file.
+  const auto later = AtmosphereModel::create(p, options);
+  EXPECT_EQ(later->cache_status(), "loaded");
+}
+
 TEST(AtmosphereCache, LoadingGivesTheSameTablesBitForBit) {
   const AtmosphereModel& model = Model();
-  // Another model of the same parameters reads the file the first one read or wrote.
-  const std::shared_ptr<const AtmosphereModel> again = AtmosphereModel::create(model.parameters());
+  // Another model of the same parameters reads the file the first one read or wrote (when told
+  // not to share the first one's tables in memory).
+  const std::shared_ptr<const AtmosphereModel> again =
+      AtmosphereModel::create(model.parameters(), PrecomputeOptions{.share_in_process = false});
   EXPECT_EQ(again->cache_status(), "loaded");
   EXPECT_EQ(again->cache_path(), model.cache_path());
   EXPECT_TRUE(SameTables(again->tables(), model.tables()));

@@ -72,6 +72,10 @@ struct PrecomputeOptions {
   // are recomputed (and `cache_status` says why).
   std::string cache_dir;
   bool use_cache = true;
+  // With the cache: reuse the tables of a model of the same parameters still alive in this
+  // process (no file read; cache_status "shared", load and precompute times 0). Off: read the
+  // file (or precompute) even so, e.g. to time the cache.
+  bool share_in_process = true;
   int threads = 0;  // 0: std::thread::hardware_concurrency()
 };
 
@@ -82,23 +86,26 @@ class AtmosphereModel {
  public:
   // Loads the tables for `parameters` from the cache, or precomputes (and caches) them.
   static std::shared_ptr<const AtmosphereModel> create(const AtmosphereParameters& parameters,
-                                                      const PrecomputeOptions& options = {});
+                                                       const PrecomputeOptions& options = {});
   ~AtmosphereModel();
   AtmosphereModel(const AtmosphereModel&) = delete;
   AtmosphereModel& operator=(const AtmosphereModel&) = delete;
 
   const AtmosphereParameters& parameters() const;
-  // Seconds spent precomputing (0 when loaded from the cache) and loading.
+  // Seconds spent precomputing (0 when loaded from the cache) and loading (both 0 when shared).
   double precompute_seconds() const;
   double load_seconds() const;
-  // "computed", "loaded", "computed (cache not written: why)", "computed (cache disabled)".
+  // "computed", "loaded", "shared" (the tables of a live model of the same parameters, see
+  // PrecomputeOptions::share_in_process), "computed (cache not written: why)",
+  // "computed (cache disabled)".
   const std::string& cache_status() const;
   const std::string& cache_path() const;
 
   // The sky's radiance along `view` (unit) from `camera` (planet-centred, m), without the sun's
   // disc; `transmittance` (optional) to the end of the ray (0 where it hits the ground).
   glm::dvec3 sky_radiance(const glm::dvec3& camera, const glm::dvec3& view,
-                          const glm::dvec3& sun_direction, glm::dvec3* transmittance = nullptr) const;
+                          const glm::dvec3& sun_direction,
+                          glm::dvec3* transmittance = nullptr) const;
   // Aerial perspective: in-scattered radiance between `camera` and `point`, and transmittance.
   glm::dvec3 sky_radiance_to_point(const glm::dvec3& camera, const glm::dvec3& point,
                                    const glm::dvec3& sun_direction,

@@ -111,6 +111,9 @@ class SceneBuilder {
 
   // Lays a JSON document over the current values. `source` names it in messages (a path).
   void load_text(std::string_view json_text, std::string_view source);
+  // Like load_text, for a scene nested in another file (a flight's "scene" object): messages name
+  // each key with `key_prefix` in front, e.g. "flight.json: scene.camera.height: expected ...".
+  void load_text(std::string_view json_text, std::string_view source, std::string_view key_prefix);
   // Reads and lays a file over the current values; a missing or unreadable file is a SceneError.
   void load_file(const std::string& path);
   // "key.path=value": value is parsed as JSON when it is valid JSON (numbers, true, "str"),
@@ -138,6 +141,20 @@ class SceneBuilder {
 
 // The embedded default scene's JSON text (what `render` uses with no scene file).
 std::string_view default_scene_json();
+
+// Checks one value, given as JSON text, against scene key `key` as a scene file's value is
+// checked (type, range, format), for files that hold scene values elsewhere (a flight's
+// keyframes). Throws SceneError "<source>: <key_prefix><key>: expected ..., got ...";
+// std::invalid_argument for a key that is not a scene key.
+void check_scene_value(std::string_view key, std::string_view value_json, std::string_view source,
+                       std::string_view key_prefix = {});
+
+// Seconds since 1970-01-01T00:00:00Z (proleptic Gregorian, no leap seconds) of a time as sun.utc
+// accepts it; nullopt when it is malformed.
+std::optional<double> parse_utc_seconds(std::string_view utc);
+// The sun.utc text of `seconds` since the epoch, rounded to the millisecond:
+// "2026-06-21T18:30:00.250Z". parse_utc_seconds reads it back to within 0.5 ms.
+std::string format_utc(double seconds);
 
 // One documented scene key: used to validate, to generate docs/scene.md and to test that the
 // documentation lists every key.
