@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "model_tables.hpp"
+#include "sky_map_texture.hpp"
 #include "thalassa/atmosphere/environment_map.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
@@ -15,13 +16,6 @@
 
 namespace thalassa::atmosphere {
 namespace {
-
-// Mip levels of a square texture of `size` texels: down to 1 x 1.
-int mip_levels(int size) { return 1 + static_cast<int>(std::floor(std::log2(size))); }
-
-// The most anisotropy the filtered sky fetch asks for (eq. 27's footprints are long ellipses
-// near the horizon); GL clamps it to the implementation's maximum (16 on llvmpipe).
-constexpr float kSkyMapAnisotropy = 1.0f;  // see SkyMapRadianceGrad
 
 gl::Texture upload_2d(const glsl::Texture2D& table) {
   gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
@@ -50,22 +44,6 @@ gl::Texture upload_3d(const glsl::Texture3D& table) {
   return texture;
 }
 
-void set_sky_map_sampling(GLuint texture) {
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameterf(texture, GL_TEXTURE_MAX_ANISOTROPY, kSkyMapAnisotropy);
-}
-
-std::string glsl_float(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  std::string s = buffer;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
 class AtmosphereProvider final : public SkyProvider {
  public:
   AtmosphereProvider(std::shared_ptr<const AtmosphereModel> model, const SkyMapSettings& settings)
@@ -74,7 +52,8 @@ class AtmosphereProvider final : public SkyProvider {
       throw std::invalid_argument("sky map size must be in [1, 8192]");
     if (settings_.array_layers < 3 || settings_.array_layers > 256)
       throw std::invalid_argument("sky map array layers must be in [3, 256]");
-    if (!(settings_.array_knee_layer > 0 && settings_.array_knee_layer < settings_.array_layers - 1 &&
+    if (!(settings_.array_knee_layer > 0 &&
+          settings_.array_knee_layer < settings_.array_layers - 1 &&
           settings_.array_knee_zenith > 0.0 &&
           settings_.array_knee_zenith < settings_.array_max_sun_zenith))
       throw std::invalid_argument("sky map array knee must lie strictly inside the array");
@@ -98,7 +77,7 @@ class AtmosphereProvider final : public SkyProvider {
   gl::Defines defines() const override {
     return {{"SKY_PROVIDER_ATMOSPHERE", "1"},
             {"ATMOSPHERE", glsl_constructor(model_->parameters())},
-            {"SKY_MAP_EXTENT", glsl_float(kSkyMapExtent)}};
+            {"SKY_MAP_EXTENT", glsl_float_literal(kSkyMapExtent)}};
   }
 
   void bind() const override {
@@ -115,8 +94,8 @@ class AtmosphereProvider final : public SkyProvider {
     const auto start = std::chrono::steady_clock::now();
     if (!sky_map_) {
       sky_map_ = gl::make_texture(GL_TEXTURE_2D);
-      glTextureStorage2D(sky_map_.get(), mip_levels(settings_.size), GL_RGBA32F, settings_.size,
-                         settings_.size);
+      glTextureStorage2D(sky_map_.get(), sky_map_mip_levels(settings_.size), GL_RGBA32F,
+                         settings_.size, settings_.size);
       set_sky_map_sampling(sky_map_.get());
     }
     render_map(shaders, sky_map_.get(), -1, height, sun);
@@ -133,7 +112,7 @@ class AtmosphereProvider final : public SkyProvider {
     if (sky_map_array_) return sky_map_array_.get();
     const auto start = std::chrono::steady_clock::now();
     sky_map_array_ = gl::make_texture(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(sky_map_array_.get(), mip_levels(settings_.size), GL_RGBA32F,
+    glTextureStorage3D(sky_map_array_.get(), sky_map_mip_levels(settings_.size), GL_RGBA32F,
                        settings_.size, settings_.size, settings_.array_layers);
     set_sky_map_sampling(sky_map_array_.get());
     for (int layer = 0; layer < settings_.array_layers; ++layer) {
@@ -209,12 +188,11 @@ class AtmosphereProvider final : public SkyProvider {
     } else {
       glNamedFramebufferTextureLayer(framebuffer.get(), GL_COLOR_ATTACHMENT0, texture, 0, layer);
     }
-    if (glCheckNamedFramebufferStatus(framebuffer.get(), GL_FRAMEBUFFER) !=
-        GL_FRAMEBUFFER_COMPLETE)
+    if (glCheckNamedFramebufferStatus(framebuffer.get(), GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw gl::GlError("sky map: framebuffer incomplete");
-    const GLuint program = shaders.program(
-        {.vertex = "engine/fullscreen.vert", .fragment = "atmosphere/sky_map.frag",
-         .defines = defines()});
+    const GLuint program = shaders.program({.vertex = "engine/fullscreen.vert",
+                                            .fragment = "atmosphere/sky_map.frag",
+                                            .defines = defines()});
     const glm::dvec3 observer = position(height);
     const glm::dvec3 below = below_horizon_radiance(height, sun);
     glProgramUniform3f(program, glGetUniformLocation(program, "observer"), float(observer.x),
@@ -223,8 +201,7 @@ class AtmosphereProvider final : public SkyProvider {
                        float(sun.y), float(sun.z));
     glProgramUniform3f(program, glGetUniformLocation(program, "below_horizon_radiance"),
                        float(below.x), float(below.y), float(below.z));
-    glProgramUniform1f(program, glGetUniformLocation(program, "map_size"),
-                       float(settings_.size));
+    glProgramUniform1f(program, glGetUniformLocation(program, "map_size"), float(settings_.size));
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.get());
     glViewport(0, 0, settings_.size, settings_.size);
     gl::set_pass_state();

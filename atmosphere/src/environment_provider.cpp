@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sky_map_texture.hpp"
 #include "thalassa/atmosphere/environment_map.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
@@ -27,14 +28,6 @@ constexpr int kPanoramaWidth = 2048;
 glm::dvec3 to_glm(const Rgb& v) { return {v[0], v[1], v[2]}; }
 Vec3 to_array(const glm::dvec3& v) { return {v.x, v.y, v.z}; }
 
-std::string glsl_float(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  std::string s = buffer;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
 // Uploads an Image (rows top first) with its top row at t = 1, as sky_provider.glsl reads.
 void upload_flipped(GLuint texture, const Image& image, int layer) {
   std::vector<float> rows(image.rgba.size());
@@ -51,16 +44,6 @@ void upload_flipped(GLuint texture, const Image& image, int layer) {
                         rows.data());
   }
 }
-
-void set_sky_map_sampling(GLuint texture) {
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameterf(texture, GL_TEXTURE_MAX_ANISOTROPY, 16.0f);
-}
-
-int mip_levels(int size) { return 1 + static_cast<int>(std::floor(std::log2(size))); }
 
 double elapsed_ms(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -92,7 +75,8 @@ class EnvironmentProvider final : public SkyProvider {
     return list;
   }
   gl::Defines defines() const override {
-    return {{"SKY_PROVIDER_ENVIRONMENT", "1"}, {"SKY_MAP_EXTENT", glsl_float(kSkyMapExtent)}};
+    return {{"SKY_PROVIDER_ENVIRONMENT", "1"},
+            {"SKY_MAP_EXTENT", glsl_float_literal(kSkyMapExtent)}};
   }
   void bind() const override {
     glBindTextureUnit(kSkyMapUnit, sky_map_.get());
@@ -105,8 +89,8 @@ class EnvironmentProvider final : public SkyProvider {
     const auto start = std::chrono::steady_clock::now();
     map_image_ = map_->stereographic_map(settings_.size, kSkyMapExtent);
     sky_map_ = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(sky_map_.get(), mip_levels(settings_.size), GL_RGBA32F, settings_.size,
-                       settings_.size);
+    glTextureStorage2D(sky_map_.get(), sky_map_mip_levels(settings_.size), GL_RGBA32F,
+                       settings_.size, settings_.size);
     upload_flipped(sky_map_.get(), map_image_, -1);
     glGenerateTextureMipmap(sky_map_.get());
     set_sky_map_sampling(sky_map_.get());
@@ -121,7 +105,7 @@ class EnvironmentProvider final : public SkyProvider {
     const auto start = std::chrono::steady_clock::now();
     if (map_image_.width == 0) map_image_ = map_->stereographic_map(settings_.size, kSkyMapExtent);
     sky_map_array_ = gl::make_texture(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(sky_map_array_.get(), mip_levels(settings_.size), GL_RGBA32F,
+    glTextureStorage3D(sky_map_array_.get(), sky_map_mip_levels(settings_.size), GL_RGBA32F,
                        settings_.size, settings_.size, settings_.array_layers);
     for (int layer = 0; layer < settings_.array_layers; ++layer)
       upload_flipped(sky_map_array_.get(), map_image_, layer);

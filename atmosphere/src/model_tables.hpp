@@ -8,10 +8,10 @@
 namespace thalassa::atmosphere {
 
 struct ModelTables {
-  glsl::Texture2D transmittance;               // T to the top, (mu, r)
-  glsl::Texture3D scattering;                  // Rayleigh single + multiple, no phase function
-  glsl::Texture3D single_mie_scattering;       // no phase function
-  glsl::Texture2D irradiance;                  // sky only (orders >= 1), horizontal surface
+  glsl::Texture2D transmittance;          // T to the top, (mu, r)
+  glsl::Texture3D scattering;             // Rayleigh single + multiple, no phase function
+  glsl::Texture3D single_mie_scattering;  // no phase function
+  glsl::Texture2D irradiance;             // sky only (orders >= 1), horizontal surface
 };
 
 namespace {

@@ -133,14 +133,13 @@ AtmosphereParameters AtmosphereParameters::earth(double bottom_radius) {
 
 void AtmosphereParameters::validate() const {
   require(non_negative3(solar_irradiance), "solar_irradiance", "finite values >= 0");
-  require(std::isfinite(sun_angular_radius) && sun_angular_radius > 0.0 &&
-              sun_angular_radius < 0.1,
+  require(std::isfinite(sun_angular_radius) && sun_angular_radius > 0.0 && sun_angular_radius < 0.1,
           "sun_angular_radius", "a value in (0, 0.1) rad");
   require(std::isfinite(bottom_radius) && bottom_radius >= 1e3 && bottom_radius <= 1e8,
           "bottom_radius", "a value in [1e3, 1e8] m");
-  require(std::isfinite(top_radius) && top_radius > bottom_radius &&
-              top_radius <= 2.0 * bottom_radius,
-          "top_radius", "a value in (bottom_radius, 2 bottom_radius]");
+  require(
+      std::isfinite(top_radius) && top_radius > bottom_radius && top_radius <= 2.0 * bottom_radius,
+      "top_radius", "a value in (bottom_radius, 2 bottom_radius]");
   require(non_negative3(rayleigh_scattering), "rayleigh_scattering", "finite values >= 0");
   require(non_negative3(mie_scattering), "mie_scattering", "finite values >= 0");
   require(non_negative3(mie_extinction) && mie_extinction.x >= mie_scattering.x &&
@@ -152,9 +151,9 @@ void AtmosphereParameters::validate() const {
   require(non_negative3(ground_albedo) && ground_albedo.x <= 1.0 && ground_albedo.y <= 1.0 &&
               ground_albedo.z <= 1.0,
           "ground_albedo", "values in [0, 1]");
-  require(std::isfinite(max_sun_zenith) && max_sun_zenith >= kPi / 2.0 &&
-              max_sun_zenith <= kPi * 0.75,
-          "max_sun_zenith", "a value in [90, 135] degrees (as radians)");
+  require(
+      std::isfinite(max_sun_zenith) && max_sun_zenith >= kPi / 2.0 && max_sun_zenith <= kPi * 0.75,
+      "max_sun_zenith", "a value in [90, 135] degrees (as radians)");
   require(scattering_orders >= 1 && scattering_orders <= 16, "scattering_orders",
           "an integer in [1, 16]");
   for (const DensityProfile* p : {&rayleigh_density, &mie_density, &absorption_density}) {

@@ -14,6 +14,7 @@
 
 #include "model_tables.hpp"
 #include "precompute.hpp"
+#include "sky_map_texture.hpp"
 
 namespace thalassa::atmosphere {
 namespace {
@@ -90,15 +91,14 @@ std::vector<vec3> density_slice(const glsl::AtmosphereParameters& atmosphere,
       directions[l * kAzimuth + m] = omega_i;
       weighted_incident[l * kAzimuth + m] =
           glsl::ComputeIncidentRadiance(atmosphere, transmittance, delta_rayleigh, delta_mie,
-                                        delta_multiple, delta_irradiance, r, mu_s, omega_i,
-                                        order) *
+                                        delta_multiple, delta_irradiance, r, mu_s, omega_i, order) *
           domega;
     }
   }
   // ScatteringDensityKernel with its densities (functions of r alone) hoisted out of the loop.
-  const vec3 rayleigh = atmosphere.rayleigh_scattering *
-                        glsl::GetProfileDensity(atmosphere.rayleigh_density,
-                                                r - atmosphere.bottom_radius);
+  const vec3 rayleigh =
+      atmosphere.rayleigh_scattering *
+      glsl::GetProfileDensity(atmosphere.rayleigh_density, r - atmosphere.bottom_radius);
   const vec3 mie = atmosphere.mie_scattering *
                    glsl::GetProfileDensity(atmosphere.mie_density, r - atmosphere.bottom_radius);
   std::vector<vec3> slice(glsl::SCATTERING_TEXTURE_HEIGHT * glsl::SCATTERING_TEXTURE_NU_SIZE);
@@ -106,8 +106,8 @@ std::vector<vec3> density_slice(const glsl::AtmosphereParameters& atmosphere,
     for (int k = 0; k < glsl::SCATTERING_TEXTURE_NU_SIZE; ++k) {
       const int x = k * glsl::SCATTERING_TEXTURE_MU_S_SIZE + j;
       double r_t, mu_s_t;
-      glsl::GetRMuMuSNuFromScatteringTextureFragCoord(
-          atmosphere, vec3(x + 0.5, y + 0.5, z + 0.5), r_t, mu, mu_s_t, nu, intersects_ground);
+      glsl::GetRMuMuSNuFromScatteringTextureFragCoord(atmosphere, vec3(x + 0.5, y + 0.5, z + 0.5),
+                                                      r_t, mu, mu_s_t, nu, intersects_ground);
       const vec3 omega = glsl::ScatteringDensityViewDirection(mu, mu_s, nu);
       vec3 density(0.0);
       for (std::size_t i = 0; i < directions.size(); ++i) {
@@ -127,22 +127,15 @@ Texture3D scattering_table() {
                    glsl::SCATTERING_TEXTURE_DEPTH);
 }
 
-std::string glsl_float(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  std::string s = buffer;
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
-}
-
 std::string glsl_vec3(const glm::dvec3& v) {
-  return "vec3(" + glsl_float(v.x) + ", " + glsl_float(v.y) + ", " + glsl_float(v.z) + ")";
+  return "vec3(" + glsl_float_literal(v.x) + ", " + glsl_float_literal(v.y) + ", " +
+         glsl_float_literal(v.z) + ")";
 }
 
 std::string glsl_layer(const DensityLayer& l) {
-  return "DensityProfileLayer(" + glsl_float(l.width) + ", " + glsl_float(l.exp_term) + ", " +
-         glsl_float(l.exp_scale) + ", " + glsl_float(l.linear_term) + ", " +
-         glsl_float(l.constant_term) + ")";
+  return "DensityProfileLayer(" + glsl_float_literal(l.width) + ", " +
+         glsl_float_literal(l.exp_term) + ", " + glsl_float_literal(l.exp_scale) + ", " +
+         glsl_float_literal(l.linear_term) + ", " + glsl_float_literal(l.constant_term) + ")";
 }
 
 std::string glsl_profile(const DensityProfile& p) {
@@ -153,8 +146,7 @@ std::string glsl_profile(const DensityProfile& p) {
 
 std::vector<vec3> compute_density_slice(const AtmosphereParameters& parameters,
                                         const Texture2D& transmittance,
-                                        const Texture3D& delta_rayleigh,
-                                        const Texture3D& delta_mie,
+                                        const Texture3D& delta_rayleigh, const Texture3D& delta_mie,
                                         const Texture3D& delta_multiple,
                                         const Texture2D& delta_irradiance, int order, int z,
                                         int j) {
@@ -165,13 +157,13 @@ std::vector<vec3> compute_density_slice(const AtmosphereParameters& parameters,
 std::string glsl_constructor(const AtmosphereParameters& a) {
   const glsl::AtmosphereParameters g = to_glsl(a);
   return "AtmosphereParameters(" + glsl_vec3(g.solar_irradiance) + ", " +
-         glsl_float(g.sun_angular_radius) + ", " + glsl_float(g.bottom_radius) + ", " +
-         glsl_float(g.top_radius) + ", " + glsl_profile(a.rayleigh_density) + ", " +
+         glsl_float_literal(g.sun_angular_radius) + ", " + glsl_float_literal(g.bottom_radius) +
+         ", " + glsl_float_literal(g.top_radius) + ", " + glsl_profile(a.rayleigh_density) + ", " +
          glsl_vec3(g.rayleigh_scattering) + ", " + glsl_profile(a.mie_density) + ", " +
          glsl_vec3(g.mie_scattering) + ", " + glsl_vec3(g.mie_extinction) + ", " +
-         glsl_float(g.mie_phase_g) + ", " + glsl_profile(a.absorption_density) + ", " +
+         glsl_float_literal(g.mie_phase_g) + ", " + glsl_profile(a.absorption_density) + ", " +
          glsl_vec3(g.absorption_extinction) + ", " + glsl_vec3(g.ground_albedo) + ", " +
-         glsl_float(g.mu_s_min) + ")";
+         glsl_float_literal(g.mu_s_min) + ")";
 }
 
 void precompute_tables(const AtmosphereParameters& parameters, int threads, ModelTables& tables) {

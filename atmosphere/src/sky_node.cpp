@@ -23,8 +23,8 @@ class SkyNode final : public gl::Node {
     const glm::dvec3 disc = provider_->sun_disc_radiance();
     glProgramUniform3f(program, glGetUniformLocation(program, "camera_position"), 0.0f, 0.0f,
                        float(provider_->planet_radius() + inputs.camera_height));
-    glProgramUniform3f(program, glGetUniformLocation(program, "sun_disc_radiance"),
-                       float(disc.x), float(disc.y), float(disc.z));
+    glProgramUniform3f(program, glGetUniformLocation(program, "sun_disc_radiance"), float(disc.x),
+                       float(disc.y), float(disc.z));
     glProgramUniform1f(program, glGetUniformLocation(program, "sun_cos_angular_radius"),
                        float(std::cos(provider_->sun_angular_radius())));
     glUseProgram(program);

@@ -250,8 +250,8 @@ class OceanNode final : public gl::Node {
                                             .defines = {{"BACKSTOP", "1"}}});
     glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
                        static_cast<GLint>(waves_.waves.size()));
-    glProgramUniform2f(program, glGetUniformLocation(program, "downwind"),
-                       float(waves_.downwind.x), float(waves_.downwind.y));
+    glProgramUniform2f(program, glGetUniformLocation(program, "downwind"), float(waves_.downwind.x),
+                       float(waves_.downwind.y));
     glProgramUniform1f(program, glGetUniformLocation(program, "n_min"),
                        float(options_.settings.n_min));
     glProgramUniform1f(program, glGetUniformLocation(program, "n_max"),
@@ -287,7 +287,6 @@ class OceanNode final : public gl::Node {
                                options_.settings.n_max)
         .positive;
   }
-
 
   OceanNodeOptions options_;
   std::shared_ptr<atmosphere::SkyProvider> provider_;

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <map>
 
 #include "sky_provider_factory.hpp"
@@ -112,9 +112,9 @@ struct Renderer::Impl {
     }
     const auto provider_start = std::chrono::steady_clock::now();
     provider = make_sky_provider(scene, options);
-    provider_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                            provider_start)
-                      .count();
+    provider_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - provider_start)
+            .count();
     // A photograph's sun is where the photograph has it.
     if (const auto sun = provider->sun_direction()) inputs.sun_direction = *sun;
     bool sky_visible = false, sea_visible = false;
@@ -124,14 +124,15 @@ struct Renderer::Impl {
     const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
     if (sea_visible)
-      graph.add(ocean::make_ocean_node({.settings = scene.ocean,
-                                        .sun_glint = sun_up && options.terms.sun,
-                                        .sky = options.terms.sky,
-                                        .sea = options.terms.sea,
-                                        .air = options.terms.air,
-                                        .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
-                                        .sky_shrm = scene.ocean.sky_filter == "shrm",
-                                        .provider = provider}));
+      graph.add(
+          ocean::make_ocean_node({.settings = scene.ocean,
+                                  .sun_glint = sun_up && options.terms.sun,
+                                  .sky = options.terms.sky,
+                                  .sea = options.terms.sea,
+                                  .air = options.terms.air,
+                                  .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
+                                  .sky_shrm = scene.ocean.sky_filter == "shrm",
+                                  .provider = provider}));
   }
 };
 
@@ -229,7 +230,8 @@ RenderStats Renderer::stats() const {
   stats.sky_provider = m.provider->kind();
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
-  if (m.provider->sky_map_ms() > 0.0) stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());
+  if (m.provider->sky_map_ms() > 0.0)
+    stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());
   if (m.provider->sky_map_array_ms() > 0.0)
     stats.setup_ms.emplace_back("sky.map_array", m.provider->sky_map_array_ms());
   for (const auto& program : m.shaders.built_programs()) stats.built.push_back("shader:" + program);

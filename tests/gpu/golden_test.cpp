@@ -177,8 +177,7 @@ TEST(OceanHierarchy, NoPoppingFromOneMetreToEightKilometres) {
   auto mean_sea = [&](double height) {
     char json[256];
     std::snprintf(json, sizeof json,
-                  R"({"image": {"width": 160, "height": 90}, "camera": {"height": %.9g}})",
-                  height);
+                  R"({"image": {"width": 160, "height": 90}, "camera": {"height": %.9g}})", height);
     Renderer renderer(*context, test::scene_from(json));
     renderer.render();
     const Image image = renderer.image();

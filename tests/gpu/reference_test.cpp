@@ -159,9 +159,7 @@ class AtmosphereReferenceTest : public ReferenceTest {
                  double tolerance, Reference reference, Scale scale) {
     const gl::Defines defines = provider_->defines();
     const GLuint program = library_->program(
-        {.vertex = "engine/fullscreen.vert",
-         .fragment = "evaluate.frag",
-         .defines = [&] {
+        {.vertex = "engine/fullscreen.vert", .fragment = "evaluate.frag", .defines = [&] {
            gl::Defines d = defines;
            d["FUNCTION"] = std::to_string(function);
            return d;
@@ -193,9 +191,8 @@ class AtmosphereReferenceTest : public ReferenceTest {
         EXPECT_TRUE(std::isfinite(g)) << "pixel " << i;
         // Errors relative to the value, with a floor of kSkyFloor times the largest value of
         // the channel (the dark side of a twilight sky is 1e-4 of its bright side).
-        const double error =
-            std::abs(g - e) /
-            std::max({std::abs(e), std::abs(scales[i][c]), kSkyFloor * largest[c], kNegligible});
+        const double error = std::abs(g - e) / std::max({std::abs(e), std::abs(scales[i][c]),
+                                                         kSkyFloor * largest[c], kNegligible});
         (c < 3 ? worst.x : worst.y) = std::max(c < 3 ? worst.x : worst.y, error);
         EXPECT_LE(error, tolerance)
             << "pixel " << i << " channel " << c << ": gpu " << g << " reference " << e
@@ -230,9 +227,10 @@ TEST_F(AtmosphereReferenceTest, SkyRadianceMatchesDoubleReference) {
             return glm::dvec4(l, transmittance.y);
           },
           [](const glm::dvec3&, const glm::dvec3&) { return glm::dvec4(0.0); });
-      std::printf("sky, height %8.0f m, sun zenith %5.1f deg: worst %.3g (radiance), %.3g "
-                  "(transmittance)\n",
-                  height, zenith, worst.x, worst.y);
+      std::printf(
+          "sky, height %8.0f m, sun zenith %5.1f deg: worst %.3g (radiance), %.3g "
+          "(transmittance)\n",
+          height, zenith, worst.x, worst.y);
     }
   }
 }
@@ -259,9 +257,10 @@ TEST_F(AtmosphereReferenceTest, AerialPerspectiveMatchesDoubleReference) {
               const glm::dvec3 up(v.x, v.y, std::abs(v.z));
               return glm::dvec4(model_->sky_radiance(camera, up, sun), 0.0);
             });
-        std::printf("aerial perspective, height %6.0f m, %6.0f m, sun zenith %5.1f deg: worst "
-                    "%.3g (radiance), %.3g (transmittance)\n",
-                    height, distance, zenith, worst.x, worst.y);
+        std::printf(
+            "aerial perspective, height %6.0f m, %6.0f m, sun zenith %5.1f deg: worst "
+            "%.3g (radiance), %.3g (transmittance)\n",
+            height, distance, zenith, worst.x, worst.y);
       }
     }
   }
@@ -295,8 +294,8 @@ TEST_F(ReferenceTest, SlopePdfsWeightsSkyMapMappingAndVarianceMatchDoubleReferen
   auto up = [](const glm::dvec3& v) {
     return glm::normalize(glm::dvec3(v.x, v.y, std::abs(v.z) + 0.05));
   };
-  for (const glm::dvec2 variance : {glm::dvec2(2e-4, 1e-4), glm::dvec2(0.0153, 0.0145),
-                                    glm::dvec2(0.09, 0.05)}) {
+  for (const glm::dvec2 variance :
+       {glm::dvec2(2e-4, 1e-4), glm::dvec2(0.0153, 0.0145), glm::dvec2(0.09, 0.05)}) {
     const glm::dvec2 sv = glm::dvec2(glm::vec2(variance));
     const double worst = compare(evaluate(8, sun, sv), 4, [&](const glm::dvec3& v) {
       const glm::dvec2 zeta(v.x * 0.5, v.y * 0.5);

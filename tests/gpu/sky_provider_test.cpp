@@ -83,7 +83,8 @@ TEST_F(SkyProviderTest, SkyMapHoldsTheModelsSkyAndTheBelowHorizonRadiance) {
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(p[c], below[c], 1e-6 * below[c]) << i << " " << j;
         ++below_count;
       } else if (r < 1.0 - half_diagonal) {
-        const glm::dvec3 expected = model_->sky_radiance(observer, texel_direction(i, j, kSize), sun);
+        const glm::dvec3 expected =
+            model_->sky_radiance(observer, texel_direction(i, j, kSize), sun);
         for (int c = 0; c < 3; ++c)
           worst = std::max(worst, std::abs(p[c] - expected[c]) / expected[c]);
         if (luminance(p) > brightest) brightest = luminance(p), brightest_i = i;
@@ -143,17 +144,17 @@ TEST_F(SkyProviderTest, ArrayLayersInterpolateWithinAStatedError) {
   // texels above the horizon: the mean and the worst, by band of sun zenith (the sky changes by
   // orders of magnitude per degree at twilight).
   struct Band {
-    double below;           // deg: the band holds mid-layer zeniths below this
-    double mean_bound;      // bounds, from the values measured on llvmpipe (comments) with a
-    double worst_bound;     // margin
+    double below;        // deg: the band holds mid-layer zeniths below this
+    double mean_bound;   // bounds, from the values measured on llvmpipe (comments) with a
+    double worst_bound;  // margin
     double mean = 0.0, worst = 0.0;
   };
   Band bands[] = {
-      {80.0, 0.03, 0.15},    // the day: measured mean 2.1e-3 to 2.1e-2, worst 9.0e-2 (near the
-                             // sun: the circumsolar glow of two layers is not the glow between)
-      {95.0, 0.08, 0.25},    // sunset and civil twilight: measured mean <= 5.5e-2, worst 0.14
-      {103.0, 0.4, 1.5}};    // deep twilight, a sky 1e-4 to 1e-6 of the day's: measured mean
-                             // <= 0.25, worst 0.85
+      {80.0, 0.03, 0.15},  // the day: measured mean 2.1e-3 to 2.1e-2, worst 9.0e-2 (near the
+                           // sun: the circumsolar glow of two layers is not the glow between)
+      {95.0, 0.08, 0.25},  // sunset and civil twilight: measured mean <= 5.5e-2, worst 0.14
+      {103.0, 0.4, 1.5}};  // deep twilight, a sky 1e-4 to 1e-6 of the day's: measured mean
+                           // <= 0.25, worst 0.85
   for (int k = 0; k + 1 < layers; ++k) {
     const double zenith = layer_zenith(k + 0.5);
     const GLuint exact_map = provider_->sky_map(0.0, sun_at(zenith, 0.0), *shaders_, nullptr);
@@ -164,15 +165,14 @@ TEST_F(SkyProviderTest, ArrayLayersInterpolateWithinAStatedError) {
     int count = 0;
     for (int j = 0; j < kSize; ++j)
       for (int i = 0; i < kSize; ++i) {
-        const glm::dvec2 u =
-            ((glm::dvec2(i, j) + 0.5) / double(kSize) * 2.0 - 1.0) * kSkyMapExtent;
+        const glm::dvec2 u = ((glm::dvec2(i, j) + 0.5) / double(kSize) * 2.0 - 1.0) * kSkyMapExtent;
         if (glm::length(u) > 0.95) continue;
         const std::size_t n = (std::size_t(j) * kSize + i) * 4;
         // Geometric interpolation per texel and channel, as SkyMapArrayRadiance does it.
         float mid[3];
         for (int c = 0; c < 3; ++c)
-          mid[c] = float(std::sqrt(std::max(double(lo[n + c]), 1e-30) *
-                                   std::max(double(hi[n + c]), 1e-30)));
+          mid[c] = float(
+              std::sqrt(std::max(double(lo[n + c]), 1e-30) * std::max(double(hi[n + c]), 1e-30)));
         const double e = std::abs(luminance(mid) - luminance(&exact[n])) / luminance(&exact[n]);
         worst = std::max(worst, e);
         sum += e;

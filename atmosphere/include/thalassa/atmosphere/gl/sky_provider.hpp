@@ -111,8 +111,7 @@ class SkyProvider {
   virtual glm::dvec3 sky_radiance(double height, const glm::dvec3& view,
                                   const glm::dvec3& sun) const = 0;
   virtual glm::dvec3 aerial_perspective(double height, const glm::dvec3& offset,
-                                        const glm::dvec3& sun,
-                                        glm::dvec3* transmittance) const = 0;
+                                        const glm::dvec3& sun, glm::dvec3* transmittance) const = 0;
 
   // The sun direction the provider imposes (an HDR photograph's sun), if any.
   virtual std::optional<glm::dvec3> sun_direction() const = 0;
@@ -121,10 +120,10 @@ class SkyProvider {
   virtual double planet_radius() const = 0;
 };
 
-std::shared_ptr<SkyProvider> make_atmosphere_provider(
-    std::shared_ptr<const AtmosphereModel> model, const SkyMapSettings& settings = {});
-std::shared_ptr<SkyProvider> make_environment_provider(
-    std::shared_ptr<const EnvironmentMap> map, double planet_radius,
-    const SkyMapSettings& settings = {});
+std::shared_ptr<SkyProvider> make_atmosphere_provider(std::shared_ptr<const AtmosphereModel> model,
+                                                      const SkyMapSettings& settings = {});
+std::shared_ptr<SkyProvider> make_environment_provider(std::shared_ptr<const EnvironmentMap> map,
+                                                       double planet_radius,
+                                                       const SkyMapSettings& settings = {});
 
 }  // namespace thalassa::atmosphere
