@@ -713,6 +713,25 @@ vec3 ComputeIndirectIrradiance(IN(AtmosphereParameters) atmosphere,
 // ---------------------------------------------------------------------------------------------
 // Rendering: sky radiance, aerial perspective, irradiance, from the precomputed tables.
 
+// Moves `position` (m, planet-centred), if outside the atmosphere, to where `view_ray` enters it,
+// and gives its radius r and r mu (m). False when the ray misses the atmosphere. The discriminant
+// is written (top - r)(top + r) + (r mu)^2, as SphereDiscriminant, rather than r mu^2 - r^2 +
+// top^2, whose two large squares cancel in float.
+bool MoveIntoAtmosphere(IN(AtmosphereParameters) atmosphere, IN(vec3) view_ray,
+                        INOUT(vec3) position, OUT(Number) r, OUT(Number) rmu) {
+  r = length(position);
+  rmu = dot(position, view_ray);
+  if (r <= atmosphere.top_radius) return true;
+  Number discriminant =
+      rmu * rmu + (atmosphere.top_radius - r) * (atmosphere.top_radius + r);
+  Number distance = -rmu - sqrt(max(discriminant, 0.0));
+  if (discriminant < 0.0 || distance <= 0.0) return false;
+  position = position + view_ray * distance;
+  r = atmosphere.top_radius;
+  rmu += distance;
+  return true;
+}
+
 // The sky's radiance (without the sun's disc) seen from `camera` (m, planet-centred) along
 // `view_ray`, and the transmittance to the top of the atmosphere or the ground along it. A
 // camera outside the atmosphere is first moved to where the ray enters it; a ray that misses
@@ -723,20 +742,11 @@ vec3 GetSkyRadiance(IN(AtmosphereParameters) atmosphere,
                     IN(ScatteringTexture) single_mie_scattering_texture, IN(vec3) camera,
                     IN(vec3) view_ray, IN(vec3) sun_direction, OUT(vec3) transmittance) {
   vec3 position = camera;
-  Number r = length(position);
-  Number rmu = dot(position, view_ray);
-  Number distance_to_top_atmosphere_boundary =
-      -rmu - sqrt(max(rmu * rmu - r * r + atmosphere.top_radius * atmosphere.top_radius, 0.0));
-  if (r > atmosphere.top_radius) {
-    if (distance_to_top_atmosphere_boundary > 0.0 &&
-        rmu * rmu - r * r + atmosphere.top_radius * atmosphere.top_radius >= 0.0) {
-      position = position + view_ray * distance_to_top_atmosphere_boundary;
-      r = atmosphere.top_radius;
-      rmu += distance_to_top_atmosphere_boundary;
-    } else {
-      transmittance = vec3(1.0);
-      return vec3(0.0);
-    }
+  Number r;
+  Number rmu;
+  if (!MoveIntoAtmosphere(atmosphere, view_ray, position, r, rmu)) {
+    transmittance = vec3(1.0);
+    return vec3(0.0);
   }
   Number mu = ClampCosine(rmu / r);
   Number mu_s = ClampCosine(dot(position, sun_direction) / r);
@@ -771,20 +781,11 @@ vec3 GetSkyRadianceToPoint(IN(AtmosphereParameters) atmosphere,
   }
   vec3 view_ray = (point - camera) / point_distance;
   vec3 position = camera;
-  Number r = length(position);
-  Number rmu = dot(position, view_ray);
-  Number distance_to_top_atmosphere_boundary =
-      -rmu - sqrt(max(rmu * rmu - r * r + atmosphere.top_radius * atmosphere.top_radius, 0.0));
-  if (r > atmosphere.top_radius) {
-    if (distance_to_top_atmosphere_boundary > 0.0 &&
-        rmu * rmu - r * r + atmosphere.top_radius * atmosphere.top_radius >= 0.0) {
-      position = position + view_ray * distance_to_top_atmosphere_boundary;
-      r = atmosphere.top_radius;
-      rmu += distance_to_top_atmosphere_boundary;
-    } else {
-      transmittance = vec3(1.0);
-      return vec3(0.0);
-    }
+  Number r;
+  Number rmu;
+  if (!MoveIntoAtmosphere(atmosphere, view_ray, position, r, rmu)) {
+    transmittance = vec3(1.0);
+    return vec3(0.0);
   }
   Number mu = ClampCosine(rmu / r);
   Number mu_s = ClampCosine(dot(position, sun_direction) / r);
