@@ -60,4 +60,10 @@ class PendingOutputs {
 // A number as the metadata print it: %.9g.
 std::string format_number(double value);
 
+// The EXR metadata of a rendered frame: the version, the merged scene, the camera and the sun,
+// the radiance units, the backend, renderer, mode and timings, with the command's own entries
+// (`extra`, e.g. the light terms or the flight frame) before the timings.
+Metadata render_metadata(const Scene& scene, const std::string& merged_json,
+                         const RenderStats& stats, const Metadata& extra = {});
+
 }  // namespace thalassa::cli

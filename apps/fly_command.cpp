@@ -197,32 +197,10 @@ class Progress {
 
 Metadata frame_metadata(const Scene& scene, const std::string& merged_json,
                         const RenderStats& stats, const Flight& flight, int frame) {
-  const auto& c = scene.camera;
-  Metadata metadata = {
-      {"thalassa:version", THALASSA_VERSION_STRING},
-      {"thalassa:scene", merged_json},
-      {"thalassa:camera",
-       "lat=" + format_number(c.lat) + " lon=" + format_number(c.lon) +
-           " height=" + format_number(c.height) + " heading=" + format_number(c.heading) +
-           " pitch=" + format_number(c.pitch) + " roll=" + format_number(c.roll) +
-           " fov_y=" + format_number(c.fov_y)},
-      {"thalassa:sun", "zenith=" + format_number(scene.sun.zenith) +
-                           " azimuth=" + format_number(scene.sun.azimuth) +
-                           (scene.sun.utc ? " utc=" + *scene.sun.utc : "")},
-      {"thalassa:flight", flight.source() + " frame=" + std::to_string(frame) +
-                              " t=" + format_number(flight.frame_time(frame)) +
-                              " fps=" + format_number(flight.fps())},
-      {"thalassa:units", "spectral radiance, W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm"},
-      {"thalassa:backend", stats.backend},
-      {"thalassa:renderer", stats.renderer},
-      {"thalassa:mode", stats.mode},
-      {"thalassa:frame_ms", format_number(stats.frame_ms)},
-  };
-  std::string passes;
-  for (const auto& [name, ms] : stats.passes)
-    passes += (passes.empty() ? "" : " ") + name + "=" + format_number(ms);
-  metadata.emplace_back("thalassa:passes_ms", passes);
-  return metadata;
+  return render_metadata(scene, merged_json, stats,
+                         {{"thalassa:flight", flight.source() + " frame=" + std::to_string(frame) +
+                                                  " t=" + format_number(flight.frame_time(frame)) +
+                                                  " fps=" + format_number(flight.fps())}});
 }
 
 double median(std::vector<double> values) {
