@@ -23,6 +23,8 @@ FrameUniforms make_frame_uniforms(const FrameInputs& inputs) {
   u.viewport[1] = static_cast<float>(inputs.height);
   u.viewport[2] = static_cast<float>(1.0 / inputs.width);
   u.viewport[3] = static_cast<float>(1.0 / inputs.height);
+  for (int column = 0; column < 3; ++column)
+    store(u.sea_curvature[column], inputs.sea_curvature[column], 0.0);
   return u;
 }
 

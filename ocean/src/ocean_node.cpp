@@ -94,7 +94,9 @@ class OceanNode final : public gl::Node {
     const glm::dvec3 irradiance = provider_->sun_irradiance(0.0, sun) + sky_irradiance;
     const double sun_solid_angle =
         2.0 * glsl::PI * (1.0 - std::cos(provider_->sun_angular_radius()));
-    const glm::dvec3 sun_irradiance = provider_->sun_radiance(0.0, sun) * sun_solid_angle;
+    // The sun's irradiance before the atmosphere (the shader applies the transmittance to each
+    // point); a photograph's sun is what it is.
+    const glm::dvec3 sun_disc_irradiance = provider_->sun_disc_radiance() * sun_solid_angle;
     const double radius = provider_->planet_radius();
     const double height = std::max(inputs.camera_height, 0.0);
     const glm::dvec3 reflectance(options_.settings.deep_reflectance_r,
@@ -103,18 +105,19 @@ class OceanNode final : public gl::Node {
     auto location = [](GLuint program, const char* name) {
       return glGetUniformLocation(program, name);
     };
-    glProgramUniform2f(lighting, location(lighting, "downwind"), float(waves_.downwind.x),
-                       float(waves_.downwind.y));
+    const glm::dvec2 downwind = nadir_downwind(inputs, waves_);
+    glProgramUniform2f(lighting, location(lighting, "downwind"), float(downwind.x),
+                       float(downwind.y));
     glProgramUniform1f(lighting, location(lighting, "fresnel_r"),
                        float(options_.settings.fresnel_r));
     glProgramUniform3f(lighting, location(lighting, "deep_reflectance"), float(reflectance.x),
                        float(reflectance.y), float(reflectance.z));
     glProgramUniform3f(lighting, location(lighting, "horizontal_irradiance"), float(irradiance.x),
                        float(irradiance.y), float(irradiance.z));
-    glProgramUniform3f(lighting, location(lighting, "sun_irradiance"), float(sun_irradiance.x),
-                       float(sun_irradiance.y), float(sun_irradiance.z));
-    glProgramUniform3f(lighting, location(lighting, "camera_position"), 0.0f, 0.0f,
-                       float(radius + height));
+    glProgramUniform3f(lighting, location(lighting, "sun_disc_irradiance"),
+                       float(sun_disc_irradiance.x), float(sun_disc_irradiance.y),
+                       float(sun_disc_irradiance.z));
+    glProgramUniform1f(lighting, location(lighting, "atmosphere_radius"), float(radius));
     glProgramUniform1f(lighting, location(lighting, "horizon_distance"),
                        float(std::sqrt(height * (2.0 * radius + height))));
     provider_->bind();
@@ -130,13 +133,15 @@ class OceanNode final : public gl::Node {
     // Pass 1, positions + normals + variances (sec. 7.3's first part), into the G-buffer.
     const GLuint geometry = context.shaders.program(
         {.vertex = "ocean/ocean.vert", .fragment = "ocean/ocean_geometry.frag"});
-    upload_phases(inputs.time);
+    upload_phases(inputs);
     glProgramUniform1i(geometry, location(geometry, "wave_count"),
                        static_cast<GLint>(waves_.waves.size()));
-    glProgramUniform2f(geometry, location(geometry, "downwind"), float(waves_.downwind.x),
-                       float(waves_.downwind.y));
+    glProgramUniform2f(geometry, location(geometry, "downwind"), float(downwind.x),
+                       float(downwind.y));
     glProgramUniform1f(geometry, location(geometry, "n_min"), float(options_.settings.n_min));
     glProgramUniform1f(geometry, location(geometry, "n_max"), float(options_.settings.n_max));
+    const float scale = float(resolved_wave_scale(inputs.camera_height));
+    glProgramUniform1f(geometry, location(geometry, "resolved_wave_scale"), scale);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
     ensure_gbuffer(context.target);
@@ -149,7 +154,7 @@ class OceanNode final : public gl::Node {
         make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
                          inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height);
     draw_grid(camera);
-    draw_backstop(context.shaders);
+    draw_backstop(context.shaders, downwind, scale);
     context.timer.end_pass("ocean.geometry");
 
     // Pass 2, lighting (sec. 7.3's second part), into the HDR target where the grid drew.
@@ -159,26 +164,33 @@ class OceanNode final : public gl::Node {
     glBindTextureUnit(1, variance_texture_.get());
     gl::draw_fullscreen_pass();
     context.timer.end_pass("ocean.lighting");
-    resolved_waves_ = count_resolved(camera);
+    resolved_waves_ = count_resolved(camera, resolved_wave_scale(inputs.camera_height));
   }
 
   int resolved_waves() const override { return resolved_waves_; }
 
  private:
-  // Phases wrapped in double on the CPU (issue 3, point 7): the shader sees only small
-  // arguments. The frame's origin is the camera's nadir.
-  void upload_phases(double time) {
-    const std::vector<double> phases = wrapped_phases(waves_, time, glm::dvec2(0.0));
+  // Phases wrapped in double on the CPU (issue 3, point 7) at the nadir's place in the waves'
+  // chart, and wave vectors turned from the chart's axes into the nadir frame's
+  // (planet/nadir_frame.hpp): k_nadir = wave_axes^T k_chart. The shader sees only small arguments.
+  void upload_phases(const gl::FrameInputs& inputs) {
+    const std::vector<double> phases = wrapped_phases(waves_, inputs.time, inputs.wave_origin);
     std::vector<float> packed;
     packed.reserve(waves_.waves.size() * 8);
     for (std::size_t i = 0; i < waves_.waves.size(); ++i) {
       const Wave& w = waves_.waves[i];
-      for (double value : {w.direction.x, w.direction.y, w.wavenumber, w.amplitude, phases[i],
+      const glm::dvec2 direction = glm::normalize(glm::transpose(inputs.wave_axes) * w.direction);
+      for (double value : {direction.x, direction.y, w.wavenumber, w.amplitude, phases[i],
                            w.wavelength, 0.0, 0.0})
         packed.push_back(static_cast<float>(value));
     }
     glNamedBufferSubData(wave_buffer_.get(), 0,
                          static_cast<GLsizeiptr>(packed.size() * sizeof(float)), packed.data());
+  }
+
+  // The wind's direction in the nadir frame (unit).
+  static glm::dvec2 nadir_downwind(const gl::FrameInputs& inputs, const WaveSet& waves) {
+    return glm::normalize(glm::transpose(inputs.wave_axes) * waves.downwind);
   }
 
   // The G-buffer between the two passes: the unit normal (+ coverage) and the unresolved slope
@@ -209,9 +221,9 @@ class OceanNode final : public gl::Node {
         make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
     if (grid.rows == 0) return;
     std::vector<float> vertices;
-    vertices.reserve(grid.rest.size() * 3);
+    vertices.reserve(grid.rest.size() * 4);
     for (std::size_t k = 0; k < grid.rest.size(); ++k)
-      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.cell_size[k]})
+      for (double value : {grid.rest[k].x, grid.rest[k].y, 0.0, grid.cell_size[k]})
         vertices.push_back(static_cast<float>(value));
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
     const GLsizeiptr index_bytes =
@@ -222,10 +234,10 @@ class OceanNode final : public gl::Node {
       index_buffer_ = gl::make_buffer();
       glNamedBufferStorage(vertex_buffer_.get(), vertex_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
       glNamedBufferStorage(index_buffer_.get(), index_bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
-      glVertexArrayVertexBuffer(vertex_array_.get(), 0, vertex_buffer_.get(), 0, 3 * sizeof(float));
+      glVertexArrayVertexBuffer(vertex_array_.get(), 0, vertex_buffer_.get(), 0, 4 * sizeof(float));
       glVertexArrayElementBuffer(vertex_array_.get(), index_buffer_.get());
       glEnableVertexArrayAttrib(vertex_array_.get(), 0);
-      glVertexArrayAttribFormat(vertex_array_.get(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribFormat(vertex_array_.get(), 0, 4, GL_FLOAT, GL_FALSE, 0);
       glVertexArrayAttribBinding(vertex_array_.get(), 0, 0);
       vertex_capacity_ = vertex_bytes;
       index_capacity_ = index_bytes;
@@ -244,18 +256,19 @@ class OceanNode final : public gl::Node {
   // (ocean_geometry.frag, BACKSTOP): a full-screen pass whose depth test passes only where the
   // depth is still the cleared far plane, so it costs only what the holes cover (and an early
   // discard on the sky).
-  void draw_backstop(gl::ShaderLibrary& shaders) {
+  void draw_backstop(gl::ShaderLibrary& shaders, const glm::dvec2& downwind, float scale) {
     const GLuint program = shaders.program({.vertex = "engine/fullscreen.vert",
                                             .fragment = "ocean/ocean_geometry.frag",
                                             .defines = {{"BACKSTOP", "1"}}});
     glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
                        static_cast<GLint>(waves_.waves.size()));
-    glProgramUniform2f(program, glGetUniformLocation(program, "downwind"), float(waves_.downwind.x),
-                       float(waves_.downwind.y));
+    glProgramUniform2f(program, glGetUniformLocation(program, "downwind"), float(downwind.x),
+                       float(downwind.y));
     glProgramUniform1f(program, glGetUniformLocation(program, "n_min"),
                        float(options_.settings.n_min));
     glProgramUniform1f(program, glGetUniformLocation(program, "n_max"),
                        float(options_.settings.n_max));
+    glProgramUniform1f(program, glGetUniformLocation(program, "resolved_wave_scale"), scale);
     glUseProgram(program);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
@@ -267,8 +280,8 @@ class OceanNode final : public gl::Node {
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
   // corners and centre that see the sea, their footprint the distance between neighbouring
   // pixels' points on the plane z = 0 (what dFdx gives the shader).
-  int count_resolved(const GridCamera& camera) const {
-    if (waves_.waves.empty()) return 0;
+  int count_resolved(const GridCamera& camera, double scale) const {
+    if (waves_.waves.empty() || !(scale > 0.0)) return 0;
     // Image points of pixel (px, py) (pixels, y up as in the image plane).
     auto image = [&](double px, double py) {
       return glm::dvec2(2.0 * px / camera.width - 1.0, 2.0 * py / camera.height_px - 1.0);
@@ -283,7 +296,7 @@ class OceanNode final : public gl::Node {
         smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
       }
     if (!std::isfinite(smallest)) return 0;
-    return resolved_wave_range(waves_, std::max(smallest, 1e-6), options_.settings.n_min,
+    return resolved_wave_range(waves_, std::max(smallest / scale, 1e-6), options_.settings.n_min,
                                options_.settings.n_max)
         .positive;
   }
@@ -308,6 +321,13 @@ class OceanNode final : public gl::Node {
 };
 
 }  // namespace
+
+double resolved_wave_scale(double camera_height_m) {
+  if (!(camera_height_m > kResolvedFadeStart)) return 1.0;
+  if (camera_height_m >= kResolvedFadeEnd) return 0.0;
+  const double x = (camera_height_m - kResolvedFadeStart) / (kResolvedFadeEnd - kResolvedFadeStart);
+  return 1.0 - x * x * (3.0 - 2.0 * x);
+}
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options) {
   if (!options.provider) throw std::invalid_argument("make_ocean_node: no sky provider");

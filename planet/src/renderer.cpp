@@ -16,7 +16,10 @@
 #include "thalassa/engine/gl/state_guard.hpp"
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/ocean/gl/ocean_node.hpp"
+#include "space_ocean_node.hpp"
+#include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/camera_frame.hpp"
+#include "thalassa/planet/nadir_frame.hpp"
 
 namespace thalassa {
 namespace {
@@ -30,7 +33,7 @@ double median(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
-gl::FrameInputs frame_inputs(const Scene& scene) {
+gl::FrameInputs frame_inputs(const Scene& scene, const NadirFrame& frame) {
   gl::FrameInputs inputs;
   inputs.width = scene.image.width;
   inputs.height = scene.image.height;
@@ -43,24 +46,45 @@ gl::FrameInputs frame_inputs(const Scene& scene) {
   inputs.camera_height = scene.camera.height;
   inputs.sun_direction = sun_direction(scene.sun.zenith, scene.sun.azimuth);
   inputs.time = scene.time;
+  inputs.sea_curvature = frame.sea_surface.curvature;
+  inputs.wave_origin = frame.wave_origin;
+  inputs.wave_axes = frame.wave_axes;
   return inputs;
 }
 
-// Which sides of the horizon the image sees. The vertical component of the (unnormalised) ray
-// through image point (u, v) is linear in u and v, so its extremes over the image rectangle
-// are at the corners: the sky is visible iff a corner ray points up, the sea iff one points
-// down. (Flat-sea placeholder: issue 5 replaces this with the planet's exact horizon.)
+// Which of the sky and the sea the image sees: the view rays through the image's border and
+// centre, met with the sea at rest (the planet's quadric). The region of rays that meet a convex
+// surface is convex in the image plane, so if the sea is seen at all, it is at the border or
+// inside it around its centre ... or, from far away, a small disc anywhere: also try the image
+// point of the nadir. A few hundred rays in double cost microseconds.
 void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& sea_visible) {
   const CameraBasis basis{inputs.camera_right, inputs.camera_up, inputs.camera_forward};
   const double aspect = double(inputs.width) / double(inputs.height);
+  const ocean::SeaSurface surface{inputs.sea_curvature};
   sky_visible = sea_visible = false;
-  for (double u : {-1.0, 1.0})
-    for (double v : {-1.0, 1.0}) {
-      const double z = view_ray(basis, inputs.tan_half_fov_y, aspect, u, v).z;
-      sky_visible = sky_visible || z > 0.0;
-      sea_visible = sea_visible || z < 0.0;
-    }
-  // Below the surface the placeholder sea fills the whole image with deep-water light.
+  auto test = [&](double u, double v) {
+    const glm::dvec3 ray = glm::normalize(view_ray(basis, inputs.tan_half_fov_y, aspect, u, v));
+    const bool sea = ocean::sea_surface_distance(surface, inputs.camera_height, ray).has_value();
+    sea_visible = sea_visible || sea;
+    sky_visible = sky_visible || !sea;
+  };
+  constexpr int kSamples = 64;  // per edge
+  for (int i = 0; i <= kSamples; ++i) {
+    const double s = -1.0 + 2.0 * i / kSamples;
+    test(s, -1.0);
+    test(s, 1.0);
+    test(-1.0, s);
+    test(1.0, s);
+  }
+  test(0.0, 0.0);
+  // The nadir's image point, if the camera faces it.
+  const double down_forward = -inputs.camera_forward.z;
+  if (down_forward > 0.0) {
+    const double u = -inputs.camera_right.z / down_forward / (inputs.tan_half_fov_y * aspect);
+    const double v = -inputs.camera_up.z / down_forward / inputs.tan_half_fov_y;
+    if (std::abs(u) <= 1.0 && std::abs(v) <= 1.0) test(u, v);
+  }
+  // Below the surface the sea fills the whole image with deep-water light.
   if (inputs.camera_height < 0.0) {
     sea_visible = true;
     sky_visible = false;
@@ -79,6 +103,7 @@ void check_drawable(const Scene& scene, const std::string& source) {
 struct Renderer::Impl {
   GlContext& context;
   Scene scene;
+  NadirFrame nadir;
   gl::FrameInputs inputs;
   gl::ShaderLibrary shaders;
   gl::HdrTarget target;
@@ -95,7 +120,8 @@ struct Renderer::Impl {
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
         scene(scene_),
-        inputs(frame_inputs(scene_)),
+        nadir(make_nadir_frame(Planet(scene_.planet), scene_.camera, options.wave_anchor)),
+        inputs(frame_inputs(scene_, nadir)),
         shaders([&] {
           std::vector<std::filesystem::path> roots(options.shader_roots.begin(),
                                                    options.shader_roots.end());
@@ -123,7 +149,15 @@ struct Renderer::Impl {
     // them as it sets).
     const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
-    if (sea_visible)
+    const bool space = scene.camera.height >= kSpaceModeHeight;
+    if (sea_visible && space)
+      graph.add(make_space_ocean_node({.settings = scene.ocean,
+                                       .sun_glint = sun_up && options.terms.sun,
+                                       .sky = options.terms.sky,
+                                       .sea = options.terms.sea,
+                                       .air = options.terms.air,
+                                       .provider = provider}));
+    else if (sea_visible)
       graph.add(
           ocean::make_ocean_node({.settings = scene.ocean,
                                   .sun_glint = sun_up && options.terms.sun,

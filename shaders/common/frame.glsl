@@ -1,14 +1,18 @@
 #ifndef THALASSA_COMMON_FRAME_GLSL
 #define THALASSA_COMMON_FRAME_GLSL
 // The per-frame uniform block, std140, binding 0. Mirrors thalassa::gl::FrameUniforms
-// (engine/include/thalassa/engine/gl/scene_graph.hpp). Directions are unit vectors in the
-// local east-north-up frame at the camera's nadir (x east, y north, z up).
+// (engine/include/thalassa/engine/gl/scene_graph.hpp). Directions are unit vectors and positions
+// metres in the local east-north-up frame tangent at the camera's nadir (x east, y north, z up;
+// origin the nadir point on the sea, the camera at (0, 0, FrameCameraHeight())).
 layout(std140, binding = 0) uniform Frame {
   vec4 frame_camera_right;    // xyz; w = tan(fov_y / 2) * aspect
   vec4 frame_camera_up;       // xyz; w = tan(fov_y / 2)
   vec4 frame_camera_forward;  // xyz; w = camera height above the sea surface, m
   vec4 frame_sun_direction;   // xyz toward the sun; w unused
   vec4 frame_viewport;        // width, height, 1 / width, 1 / height (pixels)
+  // C of the sea at rest z + 1/2 x^T C x = 0 (1/m; symmetric; 0 for the flat sea): the WGS84
+  // ellipsoid or the sphere through the nadir, exactly (ocean/sea_surface.hpp).
+  mat3 frame_sea_curvature;
 };
 
 // The unit view ray through a window position (gl_FragCoord.xy, pixels, origin bottom-left).
@@ -20,4 +24,35 @@ vec3 FrameViewRay(vec2 frag_coord) {
 
 float FrameCameraHeight() { return frame_camera_forward.w; }
 vec3 FrameSunDirection() { return frame_sun_direction.xyz; }
+
+// The quadratic a t^2 + b t + c of the sea at rest along the unit ray from the camera
+// (ocean/sea_surface.hpp, sea_surface_ray_coefficients): every term is small near the camera, so
+// float keeps its relative precision from 1 mm to 36,000 km up.
+vec3 FrameSeaRayCoefficients(vec3 ray) {
+  const float h = FrameCameraHeight();
+  const vec3 c_z = frame_sea_curvature[2];
+  return vec3(0.5 * dot(ray, frame_sea_curvature * ray), ray.z + h * dot(c_z, ray),
+              h * (1.0 + 0.5 * h * c_z.z));
+}
+
+// Distance (m) along the unit ray from the camera to the sea at rest, or -1 where it misses
+// (the near root 2c / (-b + sqrt(b^2 - 4ac)), free of cancellation).
+float FrameSeaDistance(vec3 ray) {
+  const vec3 q = FrameSeaRayCoefficients(ray);
+  const float discriminant = q.y * q.y - 4.0 * q.x * q.z;
+  if (!(q.y < 0.0) || !(discriminant >= 0.0) || !(q.z > 0.0)) return -1.0;
+  return 2.0 * q.z / (-q.y + sqrt(discriminant));
+}
+
+// The outward unit normal of the sea at rest at the point x (m, this frame).
+vec3 FrameSeaNormal(vec3 x) { return normalize(vec3(0.0, 0.0, 1.0) + frame_sea_curvature * x); }
+
+// The tangent frame of the sea at rest at x: east and north of the nadir frame projected on the
+// tangent plane and made orthonormal (columns: east, north, up), so that waves defined in the
+// nadir's (east, north) keep their directions wherever the planet curves under them.
+mat3 FrameSeaTangentFrame(vec3 x) {
+  const vec3 up = FrameSeaNormal(x);
+  const vec3 east = normalize(vec3(1.0, 0.0, 0.0) - up.x * up);
+  return mat3(east, cross(up, east), up);
+}
 #endif

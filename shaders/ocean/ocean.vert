@@ -1,34 +1,43 @@
 // The projected grid's vertex (Bruneton et al. 2010 sec. 3.2, fig. 3): a rest position on the
 // sea computed on the CPU in double (ocean/projected_grid.hpp), displaced by the waves longer
-// than the grid cell (eq. 2 with w_p), projected back with reversed-Z (infinite far plane).
+// than the grid cell (eq. 2 with w_p), projected back with reversed-Z (infinite far plane). The
+// sea at rest is curved with the planet (sec. 6, "a projection on the sphere"; here the frame's
+// exact quadric): the waves displace each point in its own tangent frame (FrameSeaTangentFrame),
+// their arguments taken at the point's east and north coordinates in the nadir frame.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
 
-// x, y: rest position, m east and north of the camera's nadir; z: the grid cell's size there, m.
-layout(location = 0) in vec3 rest_and_cell;
-out vec2 rest_position;  // m, interpolated for the per-pixel normals of the fragment shader
+// xyz: rest position on the sea at rest, m, nadir frame (common/frame.glsl); w: the grid cell's
+// size there, m.
+layout(location = 0) in vec4 rest_and_cell;
+out vec3 rest_position;  // m, interpolated for the per-pixel normals of the fragment shader
 
 // Two vec4 per wave, longest first (see ocean.frag).
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
 uniform int wave_count;
 uniform float n_min;  // N_min, N_max of w_p (sec. 3.2)
 uniform float n_max;
+// Scales every wavelength in the filter weights: 1, falling to 0 as the camera rises to the view
+// from space (ocean/gl/ocean_node.hpp, resolved_wave_scale).
+uniform float resolved_wave_scale;
 // Distance of the near plane, m: depth = OCEAN_NEAR_PLANE / (distance along the view axis).
 const float OCEAN_NEAR_PLANE = 0.01;
 
 void main() {
-  const vec2 x = rest_and_cell.xy;
-  const float cell = max(rest_and_cell.z, 1e-6);
-  vec3 p = vec3(x, 0.0);
+  const vec3 x = rest_and_cell.xyz;
+  const float cell = max(rest_and_cell.w, 1e-6);
+  vec3 displacement = vec3(0.0);
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
-    const float w_p = WaveFilterWeight(n_min, n_max, b.y / cell);
+    const float w_p = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / cell);
     if (w_p <= 0.0) break;  // longest first: every later wave is shorter
     const vec2 direction = vec2(a.x, a.y);
-    p += w_p * TrochoidDisplacement(direction, a.w, TrochoidArgument(a.z * direction, b.x, x));
+    displacement +=
+        w_p * TrochoidDisplacement(direction, a.w, TrochoidArgument(a.z * direction, b.x, x.xy));
   }
+  const vec3 p = x + FrameSeaTangentFrame(x) * displacement;
   // Camera-relative (the camera is at height FrameCameraHeight() above the nadir).
   const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
   gl_Position = vec4(dot(d, frame_camera_right.xyz) / frame_camera_right.w,

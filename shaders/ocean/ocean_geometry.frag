@@ -18,7 +18,7 @@
 // otherwise let a driver defer the test past the wave sum).
 layout(early_fragment_tests) in;
 #else
-in vec2 rest_position;  // m east and north of the camera's nadir (ocean.vert)
+in vec3 rest_position;  // m, on the sea at rest, nadir frame (ocean.vert)
 #endif
 layout(location = 0) out vec4 normal_out;    // xyz: unit normal, east-north-up; w: 1 (coverage)
 layout(location = 1) out vec4 variance_out;  // xy: slope variance along, across the wind
@@ -37,20 +37,25 @@ const float ANTIALIAS_MAX_VARIANCE = 0.02;
 uniform vec2 downwind;  // unit, east-north-up
 uniform float n_min;    // N_min, N_max of w_n (sec. 3.2)
 uniform float n_max;
+// Scales every wavelength in the filter weights: 1, falling to 0 as the camera rises to the view
+// from space (ocean/gl/ocean_node.hpp, resolved_wave_scale).
+uniform float resolved_wave_scale;
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
 #ifdef BACKSTOP
-  // Where the ray meets the plane z = 0 (the grazing clamp keeps x finite for derivatives
-  // before rays that never meet it are discarded).
-  const vec2 x = vec2(ray.x, ray.y) * (FrameCameraHeight() / max(-ray.z, 1e-6));
+  // Where the ray meets the sea at rest; a ray that misses it gets the flat sea's point (clamped
+  // at grazing) so that the derivatives stay finite before its pixel is discarded.
+  const float distance = FrameSeaDistance(ray);
+  const vec3 x = vec3(0.0, 0.0, FrameCameraHeight()) +
+                 (distance >= 0.0 ? distance : FrameCameraHeight() / max(-ray.z, 1e-6)) * ray;
 #else
-  const vec2 x = rest_position;
+  const vec3 x = rest_position;
 #endif
   // The pixel's footprint on the sea (m): its larger side, so that no resolved wave aliases.
   const float footprint = max(max(length(dFdx(x)), length(dFdy(x))), 1e-6);
 #ifdef BACKSTOP
-  if (ray.z >= 0.0) discard;  // the sky's pixel
+  if (distance < 0.0) discard;  // the sky's pixel
 #endif
 
   // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
@@ -63,7 +68,7 @@ void main() {
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
-    const float w_n = WaveFilterWeight(n_min, n_max, b.y / footprint);
+    const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
     if (w_n <= 0.0) {
       first_unresolved = i;
       break;
@@ -71,7 +76,7 @@ void main() {
     const vec2 direction = vec2(a.x, a.y);
     vec3 wave_dx, wave_dy;
     TrochoidDisplacementDerivatives(direction, a.z, a.w,
-                                    TrochoidArgument(a.z * direction, b.x, x), wave_dx, wave_dy);
+                                    TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
     d_dx += w_n * wave_dx;
     d_dy += w_n * wave_dy;
     if (w_n < 1.0) {
@@ -82,7 +87,9 @@ void main() {
     }
   }
   const vec3 v = -ray;  // toward the eye
-  vec3 n = normalize(cross(d_dx, d_dy));
+  // The normal in the tangent frame of the sea at rest at x, turned into the nadir frame.
+  const vec3 n_local = normalize(cross(d_dx, d_dy));
+  vec3 n = FrameSeaTangentFrame(x) * n_local;
   // Sec. 3.2: a normal facing away from the viewer is reflected back toward it.
   if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
   normal_out = vec4(n, 1.0);
@@ -96,7 +103,7 @@ void main() {
   // antialiasing"). It keeps the energy (the BRDF stays normalised) and removes the sparkle that
   // one sample per pixel cannot resolve; capped at ANTIALIAS_MAX_VARIANCE so that a slope jump
   // across a silhouette does not turn a pixel into a diffuse one.
-  const vec2 slope = vec2(n.x, n.y) / max(n.z, 1e-3);
+  const vec2 slope = vec2(n_local.x, n_local.y) / max(n_local.z, 1e-3);
   const vec2 wind_slope = vec2(dot(slope, downwind), dot(slope, crosswind));
   const vec2 slope_dx = dFdx(wind_slope);
   const vec2 slope_dy = dFdy(wind_slope);

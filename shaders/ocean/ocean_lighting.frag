@@ -24,10 +24,13 @@ layout(binding = 1) uniform sampler2D variances;  // xy slope variance along, ac
 uniform vec2 downwind;                // unit, east-north-up
 uniform float fresnel_r;              // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;        // irradiance reflectance of the water body, per channel
-uniform vec3 horizontal_irradiance;   // sun + sky on a horizontal surface at sea level
-uniform vec3 sun_irradiance;          // L_sun Omega_sun at sea level, facing the sun
-uniform vec3 camera_position;         // planet-centred, m: (0, 0, planet radius + height)
-uniform float horizon_distance;       // m: where the plane's rays meet the sphere's horizon
+// Sun + sky on a horizontal surface at sea level under the nadir (the physical atmosphere, without
+// SKY_SHRM, computes it at each point instead).
+uniform vec3 horizontal_irradiance;
+uniform vec3 sun_disc_irradiance;     // L_sun Omega_sun before the atmosphere's transmittance
+uniform float atmosphere_radius;      // m, the provider's planet radius (a sphere tangent at the
+                                      // nadir: centre (0, 0, -atmosphere_radius))
+uniform float horizon_distance;       // m: the sea's horizon, for rays that miss its rest shape
 
 // Eq. 22 by a 3 x 3 Gauss-Hermite rule in slope space: p is a Gaussian of standard deviations
 // sigma_x, sigma_y, and the 3-point rule (nodes 0, +-sqrt(3) sigma; weights 2/3, 1/6, 1/6) is
@@ -70,6 +73,31 @@ void main() {
   const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
   const vec3 sun = FrameSunDirection();
 
+  // The pixel's point of the sea at rest (a ray over a crest that misses it: the horizon's
+  // distance), moved radially onto the atmosphere's sphere for its lookups (the planet's quadric
+  // and that sphere part by at most ~0.1 km within a surface view's horizon).
+  const float rest_distance = FrameSeaDistance(ray);
+  const vec3 point = vec3(0.0, 0.0, FrameCameraHeight()) +
+                     (rest_distance >= 0.0 ? rest_distance : horizon_distance) * ray;
+  const vec3 centre = vec3(0.0, 0.0, -atmosphere_radius);
+  const vec3 ground = normalize(point - centre) * atmosphere_radius;
+  const vec3 camera = vec3(0.0, 0.0, FrameCameraHeight() + atmosphere_radius);
+#if defined(SKY_PROVIDER_ATMOSPHERE)
+  // The sun and the irradiance at the point itself: across a view from 20 km the local sun zenith
+  // changes by up to 9 degrees, as it does from one pixel to the next in the view from space.
+  const vec3 sun_irradiance = sun_disc_irradiance * SkySunTransmittance(ground, sun);
+#ifdef SKY_SHRM
+  const vec3 irradiance = horizontal_irradiance;
+#else
+  vec3 sky_irradiance;
+  const vec3 irradiance =
+      SkySunAndSkyIrradiance(ground, normalize(ground), sun, sky_irradiance) + sky_irradiance;
+#endif
+#else
+  const vec3 sun_irradiance = sun_disc_irradiance;  // a photograph: no atmosphere
+  const vec3 irradiance = horizontal_irradiance;
+#endif
+
   // Sky (eq. 21, 26, 27) and refracted light (eq. 28).
   const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
                                               fresnel_r);
@@ -97,7 +125,7 @@ void main() {
 #endif  // SKY_SHRM
 #endif
 #ifdef SEA_TERM
-  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);
+  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, irradiance);
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
@@ -105,14 +133,9 @@ void main() {
          OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
 #endif
 
-  // Aerial perspective to the sea point at rest on the plane z = 0 of the camera's nadir frame
-  // (its distance capped at the sphere's horizon, where the plane's rays would otherwise run to
-  // infinity).
-  const float height = FrameCameraHeight();
-  const float distance = min(height / max(-ray.z, 1e-9), horizon_distance);
+  // Aerial perspective to the point.
   vec3 transmittance;
-  vec3 in_scattered =
-      SkyAerialPerspective(camera_position, camera_position + distance * ray, sun, transmittance);
+  vec3 in_scattered = SkyAerialPerspective(camera, ground, sun, transmittance);
 #ifndef AIR_TERM
   in_scattered = vec3(0.0);
 #endif

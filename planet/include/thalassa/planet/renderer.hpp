@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "thalassa/engine/context.hpp"
 #include "thalassa/engine/image.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/planet/geodesy.hpp"
 
 namespace thalassa {
 
@@ -59,6 +61,9 @@ struct RendererOptions {
   // Folder of the atmosphere's table cache (empty: $THALASSA_CACHE_DIR, else
   // $XDG_CACHE_HOME/thalassa, else ~/.cache/thalassa).
   std::string cache_dir;
+  // Origin of the waves' chart (planet/nadir_frame.hpp); by default the lattice point nearest
+  // the camera's nadir. A flight gives all its frames one anchor, so that its waves never jump.
+  std::optional<Geodetic> wave_anchor;
 };
 
 // Throws SceneError for a valid scene that cannot be drawn as it stands, rather than drawing

@@ -28,6 +28,14 @@ struct FrameInputs {
   double camera_height = 4.0;                   // m above the sea surface (z = 0)
   glm::dvec3 sun_direction{0, 0, 1};            // toward the sun
   double time = 0.0;                            // s
+  // The sea at rest in this frame (origin the nadir on the sea; the camera at (0, 0,
+  // camera_height)): the points x with z + 1/2 x^T C x = 0, C = sea_curvature in 1/m (0: the flat
+  // sea; I / R: a sphere; the ellipsoid's own C: planet/nadir_frame.hpp, ocean/sea_surface.hpp).
+  glm::dmat3 sea_curvature{0.0};
+  // The waves' chart (planet/nadir_frame.hpp): a point x of this frame has the chart coordinates
+  // wave_origin + wave_axes * (x.x, x.y), metres.
+  glm::dvec2 wave_origin{0.0};
+  glm::dmat2 wave_axes{1.0};
 };
 
 // The per-frame uniform block shared by all passes: shaders/common/frame.glsl declares the
@@ -38,8 +46,9 @@ struct FrameUniforms {
   float camera_forward[4];  // xyz; w = camera height above the sea, m
   float sun_direction[4];   // xyz; w unused
   float viewport[4];        // width, height, 1 / width, 1 / height (pixels)
+  float sea_curvature[3][4];  // the columns of FrameInputs::sea_curvature (std140 mat3), 1/m
 };
-static_assert(sizeof(FrameUniforms) == 5 * 16, "std140 layout of shaders/common/frame.glsl");
+static_assert(sizeof(FrameUniforms) == 8 * 16, "std140 layout of shaders/common/frame.glsl");
 constexpr GLuint kFrameBinding = 0;
 
 FrameUniforms make_frame_uniforms(const FrameInputs& inputs);

@@ -33,4 +33,19 @@ struct OceanNodeOptions {
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
 
+// The seamless switch to the view from space (issue 5, point 4; Bruneton et al. 2010 sec. 6): at
+// 20 km the planet's ocean becomes a surface shaded with the Ross BRDF of every wave, with no
+// geometry and no normals. So that nothing pops there, the projected grid hands its waves over
+// to the BRDF before it: between kResolvedFadeStart and kResolvedFadeEnd of camera height, every
+// wavelength is scaled by this factor in the filter weights w_p and w_n (eq. 2, 3), 1 below the
+// band, 0 at its top (a C1 smoothstep), as if the pixels and cells grew without bound. A wave
+// leaving the normals goes to the unresolved slope variance (eq. 4, w_r = 1 - w_n), so the
+// hierarchy's energy is kept all the way, and at 20 km the grid shades exactly what the view
+// from space does. The band starts at half the switch height: a 10 km camera resolves, at
+// 1024 x 768 and 45 degrees, waves longer than about 25 m as normals; over the next 10 km they
+// fade into the glint's width, as they would from the growing distance alone.
+inline constexpr double kResolvedFadeStart = 10000.0;  // m
+inline constexpr double kResolvedFadeEnd = 20000.0;    // m: the switch height (kSpaceModeHeight)
+double resolved_wave_scale(double camera_height_m);
+
 }  // namespace thalassa::ocean

@@ -1,0 +1,24 @@
+// thalassa — the ocean seen from space as a scene-graph node (internal to the planet module):
+// shaders/planet/ocean_space.frag, one full-screen pass, no grid (issue 5, point 2).
+#pragma once
+
+#include <memory>
+
+#include "thalassa/atmosphere/gl/sky_provider.hpp"
+#include "thalassa/engine/gl/scene_graph.hpp"
+#include "thalassa/engine/scene.hpp"
+
+namespace thalassa {
+
+struct SpaceOceanNodeOptions {
+  OceanSettings settings;  // the wave set (its total slope variance), Fresnel, deep reflectance
+  bool sun_glint = true;
+  bool sky = true;
+  bool sea = true;
+  bool air = true;
+  std::shared_ptr<atmosphere::SkyProvider> provider;
+};
+
+std::unique_ptr<gl::Node> make_space_ocean_node(const SpaceOceanNodeOptions& options);
+
+}  // namespace thalassa

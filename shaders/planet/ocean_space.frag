@@ -1,0 +1,108 @@
+// The ocean seen from space (Bruneton, Neyret & Holzschuch 2010, sec. 6, "Planet-scale
+// rendering"; issue 5, point 2): "for space views we do not need a projected grid nor
+// transitions between levels of details. Instead, we render a sphere with the Ross BRDF
+// directly" -- here the planet's own surface (the WGS84 ellipsoid or the sphere: the frame's sea
+// quadric, exact), met per pixel by the view ray, shaded with the Ross BRDF whose slope variance
+// holds every wave of the scene (eq. 4 with w_r = 1: the wave set's total), no normal
+// perturbation. Each point is lit as Algorithm 5.1 lights a pixel, with its own sun: the sun's
+// transmittance and the irradiance at the point, and "the 2D map corresponding to the local Sun
+// elevation" from the provider's sun-zenith-indexed array, turned so that the sun is at the map's
+// north. Then the aerial perspective between the camera and the point.
+//
+// Frames and units: the nadir frame of common/frame.glsl (m). The atmosphere is the provider's
+// sphere of radius atmosphere_radius tangent to the sea at the nadir (centre (0, 0, -R)); a point
+// of the sea is moved radially onto that sphere for the atmosphere's lookups, which keeps its
+// altitude 0 where the ellipsoid and the sphere part (up to 21 km apart at the limb seen from
+// 36,000 km; 0.2 km at 2,000 km from the nadir). Radiance in W m^-2 sr^-1 nm^-1.
+#include "common/definitions.glsl"
+#include "common/frame.glsl"
+#include "atmosphere/sky_provider.glsl"
+#include "ocean/ross_brdf.glsl"
+
+layout(location = 0) out vec4 radiance;
+
+uniform vec2 downwind;            // unit, the nadir frame's (east, north)
+uniform vec2 slope_variance;      // every wave's: along, across the wind (dimensionless)
+uniform float fresnel_r;          // R of Schlick's Fresnel (eq. 14)
+uniform vec3 deep_reflectance;    // irradiance reflectance of the water body, per channel
+uniform vec3 sun_disc_irradiance; // L_sun Omega_sun before the atmosphere's transmittance
+uniform float atmosphere_radius;  // m, the provider's planet radius
+#ifdef SKY_PROVIDER_ENVIRONMENT
+// A photograph has no atmosphere and one sky: its irradiance on a horizontal surface (sky only).
+uniform vec3 environment_sky_irradiance;
+#endif
+// Distance of the near plane, m (the depth written is OCEAN_NEAR_PLANE / view-axis distance,
+// reversed-Z with an infinite far plane, as the projected grid's).
+const float OCEAN_NEAR_PLANE = 0.01;
+
+// A unit vector perpendicular to the unit vector n, as close to `preferred` as it can be: the
+// component of `preferred` in the plane, or (where `preferred` is along n) one of `fallback`.
+vec3 TangentToward(vec3 n, vec3 preferred, vec3 fallback) {
+  vec3 t = preferred - dot(preferred, n) * n;
+  if (dot(t, t) < 1e-8) t = fallback - dot(fallback, n) * n;
+  if (dot(t, t) < 1e-8) t = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) - n.x * n : vec3(0.0, 1.0, 0.0) - n.y * n;
+  return normalize(t);
+}
+
+void main() {
+  const vec3 ray = FrameViewRay(gl_FragCoord.xy);
+  const float distance = FrameSeaDistance(ray);
+  if (distance < 0.0) discard;  // space or the limb: the sky pass's pixel
+  const vec3 x = vec3(0.0, 0.0, FrameCameraHeight()) + distance * ray;
+  const vec3 n = FrameSeaNormal(x);
+  const vec3 sun = FrameSunDirection();
+  const vec3 v = -ray;
+
+  // Algorithm 5.1's tangent frame: the wind along t_x.
+  const vec3 t_x = TangentToward(n, vec3(downwind, 0.0), sun);
+  const vec3 t_y = cross(n, t_x);
+  const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
+
+  // The atmosphere's view of the point.
+  const vec3 centre = vec3(0.0, 0.0, -atmosphere_radius);
+  const vec3 ground = normalize(x - centre) * atmosphere_radius;
+  const vec3 camera = vec3(0.0, 0.0, FrameCameraHeight() + atmosphere_radius);
+#ifdef SKY_PROVIDER_ENVIRONMENT
+  const vec3 sun_irradiance = sun_disc_irradiance;
+  const vec3 horizontal_irradiance =
+      sun_disc_irradiance * max(dot(n, sun), 0.0) + environment_sky_irradiance;
+#else
+  const vec3 sun_irradiance = sun_disc_irradiance * SkySunTransmittance(ground, sun);
+  vec3 sky_irradiance;
+  const vec3 sun_on_ground =
+      SkySunAndSkyIrradiance(ground, normalize(ground), sun, sky_irradiance);
+  const vec3 horizontal_irradiance = sun_on_ground + sky_irradiance;
+#endif
+
+  const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
+                                              fresnel_r);
+  vec3 sea = vec3(0.0);
+#ifdef SKY_TERM
+  // The sky map of the local sun zenith, in the frame whose north is the sun's azimuth at the
+  // point (the array's layers have the sun at azimuth 0): eq. 27's fetch, as ocean_lighting.frag.
+  const vec3 map_north = TangentToward(n, sun, t_x);
+  const vec3 map_east = cross(map_north, n);
+  const mat3 to_map = transpose(mat3(map_east, map_north, n));
+  vec2 u0, du_x, du_y;
+  OceanSkyMapGradients(to_map * v, to_map * t_x, to_map * t_y, vec3(0.0, 0.0, 1.0), u0, du_x,
+                       du_y);
+  const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
+  sea += fresnel * SkyMapArrayRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y,
+                                           SkyMapArrayLayer(dot(n, sun)));
+#endif
+#ifdef SEA_TERM
+  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);
+#endif
+#ifdef SUN_GLINT
+  sea += sun_irradiance * OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n),
+                                            slope_variance, fresnel_r);
+#endif
+
+  vec3 transmittance;
+  vec3 in_scattered = SkyAerialPerspective(camera, ground, sun, transmittance);
+#ifndef AIR_TERM
+  in_scattered = vec3(0.0);
+#endif
+  radiance = vec4(sea * transmittance + in_scattered, 1.0);
+  gl_FragDepth = OCEAN_NEAR_PLANE / max(distance * dot(ray, frame_camera_forward.xyz), 1e-30);
+}
