@@ -388,6 +388,14 @@ int run_fly(const FlyArgs& args) {
   options.height = first_scene.image.height;
   std::unique_ptr<GlContext> context = open_context(args.backend, options);
   std::unique_ptr<Renderer> renderer;
+  // One wave chart for the whole flight (planet/nadir_frame.hpp), wherever a slice starts: the
+  // lattice point under its last frame, where a flight to the surface is lowest and the waves show.
+  RendererOptions renderer_options;
+  {
+    const Scene last_scene = flight.frame_scene(flight.frame_count() - 1);
+    renderer_options.wave_anchor =
+        nearest_wave_anchor(last_scene.camera.lat, last_scene.camera.lon);
+  }
   Progress progress(first, last);
   std::vector<FrameRecord> records;
   const auto start = Clock::now();
@@ -409,7 +417,7 @@ int run_fly(const FlyArgs& args) {
     }
     const auto renderer_start = Clock::now();
     try {
-      auto next = std::make_unique<Renderer>(*context, scene);
+      auto next = std::make_unique<Renderer>(*context, scene, renderer_options);
       renderer = std::move(next);
     } catch (const SceneError& error) {  // e.g. a sky.exr that is not a usable sky
       progress.finish();
