@@ -55,8 +55,7 @@ class EnvironmentProvider final : public SkyProvider {
   EnvironmentProvider(std::shared_ptr<const EnvironmentMap> map, double planet_radius,
                       const SkyMapSettings& settings)
       : map_(std::move(map)), planet_radius_(planet_radius), settings_(settings) {
-    if (settings_.size < 1 || settings_.size > 8192)
-      throw std::invalid_argument("sky map size must be in [1, 8192]");
+    check_sky_map_settings(settings_);
     const Image panorama = map_->panorama(kPanoramaWidth);
     panorama_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(panorama_.get(), 1, GL_RGBA32F, panorama.width, panorama.height);
@@ -75,12 +74,15 @@ class EnvironmentProvider final : public SkyProvider {
     return list;
   }
   gl::Defines defines() const override {
-    return {{"SKY_PROVIDER_ENVIRONMENT", "1"},
-            {"SKY_MAP_EXTENT", glsl_float_literal(kSkyMapExtent)}};
+    gl::Defines defines = sky_map_array_defines(settings_);
+    defines["SKY_PROVIDER_ENVIRONMENT"] = "1";
+    defines["SKY_MAP_EXTENT"] = glsl_float_literal(kSkyMapExtent);
+    return defines;
   }
   void bind() const override {
     glBindTextureUnit(kSkyMapUnit, sky_map_.get());
     glBindTextureUnit(kSkyPanoramaUnit, panorama_.get());
+    if (sky_map_array_) glBindTextureUnit(kSkyMapArrayUnit, sky_map_array_.get());
   }
 
   // The photograph is one sky for every height and sun: built once.
