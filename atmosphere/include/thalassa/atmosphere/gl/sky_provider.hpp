@@ -88,7 +88,12 @@ class SkyProvider {
   virtual GLuint sky_map(double height, const glm::dvec3& sun, gl::ShaderLibrary& shaders,
                          gl::GpuTimer* timer) = 0;
   // (b) The sun-zenith-indexed array of such maps seen from the sea surface, the sun at azimuth
-  // 0 (north) and zenith angle layer * max / (layers - 1): a mipmapped 2D array texture.
+  // 0 (north, +t) and the zenith angle sky_map_array_zenith(layer): a mipmapped 2D array
+  // texture, read by SkyMapArrayRadianceGrad at the layer SkyMapArrayLayer gives for a point's
+  // local sun zenith (Bruneton, Neyret & Holzschuch 2010, sec. 6, planet-scale rendering). An
+  // HDR photograph is one sky for one sun: its provider fills every layer with the same map,
+  // turned about the zenith so that the photograph's sun is at azimuth 0 (as photographed when
+  // no sun was found in it).
   virtual GLuint sky_map_array(gl::ShaderLibrary& shaders, gl::GpuTimer* timer) = 0;
   virtual const SkyMapSettings& sky_map_settings() const = 0;
   // Milliseconds spent building the last sky map and the array (0 until built).
