@@ -48,15 +48,7 @@ class AtmosphereProvider final : public SkyProvider {
  public:
   AtmosphereProvider(std::shared_ptr<const AtmosphereModel> model, const SkyMapSettings& settings)
       : model_(std::move(model)), settings_(settings) {
-    if (settings_.size < 1 || settings_.size > 8192)
-      throw std::invalid_argument("sky map size must be in [1, 8192]");
-    if (settings_.array_layers < 3 || settings_.array_layers > 256)
-      throw std::invalid_argument("sky map array layers must be in [3, 256]");
-    if (!(settings_.array_knee_layer > 0 &&
-          settings_.array_knee_layer < settings_.array_layers - 1 &&
-          settings_.array_knee_zenith > 0.0 &&
-          settings_.array_knee_zenith < settings_.array_max_sun_zenith))
-      throw std::invalid_argument("sky map array knee must lie strictly inside the array");
+    check_sky_map_settings(settings_);
     const ModelTables& tables = model_->tables();
     transmittance_ = upload_2d(tables.transmittance);
     scattering_ = upload_3d(tables.scattering);
@@ -75,9 +67,11 @@ class AtmosphereProvider final : public SkyProvider {
   }
 
   gl::Defines defines() const override {
-    return {{"SKY_PROVIDER_ATMOSPHERE", "1"},
-            {"ATMOSPHERE", glsl_constructor(model_->parameters())},
-            {"SKY_MAP_EXTENT", glsl_float_literal(kSkyMapExtent)}};
+    gl::Defines defines = sky_map_array_defines(settings_);
+    defines["SKY_PROVIDER_ATMOSPHERE"] = "1";
+    defines["ATMOSPHERE"] = glsl_constructor(model_->parameters());
+    defines["SKY_MAP_EXTENT"] = glsl_float_literal(kSkyMapExtent);
+    return defines;
   }
 
   void bind() const override {
@@ -86,6 +80,7 @@ class AtmosphereProvider final : public SkyProvider {
     glBindTextureUnit(kSkyScatteringUnit, scattering_.get());
     glBindTextureUnit(kSkySingleMieUnit, single_mie_.get());
     glBindTextureUnit(kSkyIrradianceUnit, irradiance_.get());
+    if (sky_map_array_) glBindTextureUnit(kSkyMapArrayUnit, sky_map_array_.get());
   }
 
   GLuint sky_map(double height, const glm::dvec3& sun, gl::ShaderLibrary& shaders,

@@ -481,11 +481,11 @@ Rgb EnvironmentMap::radiance(const Vec3& direction) const {
   return lookup(theta, alpha, last_sky_row());
 }
 
-Image EnvironmentMap::stereographic_map(int size, double extent) const {
-  if (size < 1 || !std::isfinite(extent) || !(extent > 0.0))
+Image EnvironmentMap::stereographic_map(int size, double extent, double north_azimuth) const {
+  if (size < 1 || !std::isfinite(extent) || !(extent > 0.0) || !std::isfinite(north_azimuth))
     throw std::invalid_argument(
-        "thalassa::atmosphere::EnvironmentMap::stereographic_map: need size >= 1 and a finite "
-        "extent > 0");
+        "thalassa::atmosphere::EnvironmentMap::stereographic_map: need size >= 1, a finite "
+        "extent > 0 and a finite north_azimuth");
   const double texel_u = 2.0 * extent / size;
   // One u unit spans at most 2 rad (at the zenith: theta = 2 atan |u|); a photograph row spans
   // pi / H.
@@ -503,9 +503,10 @@ Image EnvironmentMap::stereographic_map(int size, double extent) const {
           const double radius = std::hypot(ux, uy);
           // |u| <= 1 is r_z >= 0 (radiance()'s sky side); theta = 2 atan |u| and the azimuth
           // of (r_x, r_y), parallel to u, give the direction without normalising.
-          const Rgb value =
-              radius <= 1.0 ? lookup(2.0 * std::atan(radius), std::atan2(ux, uy), last_sky_row())
-                            : below_horizon_radiance_;
+          const Rgb value = radius <= 1.0
+                                ? lookup(2.0 * std::atan(radius),
+                                         std::atan2(ux, uy) + north_azimuth, last_sky_row())
+                                : below_horizon_radiance_;
           for (int k = 0; k < 3; ++k) sum[k] += value[k];
         }
       float* p = image.pixel(i, j);

@@ -55,8 +55,7 @@ class EnvironmentProvider final : public SkyProvider {
   EnvironmentProvider(std::shared_ptr<const EnvironmentMap> map, double planet_radius,
                       const SkyMapSettings& settings)
       : map_(std::move(map)), planet_radius_(planet_radius), settings_(settings) {
-    if (settings_.size < 1 || settings_.size > 8192)
-      throw std::invalid_argument("sky map size must be in [1, 8192]");
+    check_sky_map_settings(settings_);
     const Image panorama = map_->panorama(kPanoramaWidth);
     panorama_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(panorama_.get(), 1, GL_RGBA32F, panorama.width, panorama.height);
@@ -75,12 +74,15 @@ class EnvironmentProvider final : public SkyProvider {
     return list;
   }
   gl::Defines defines() const override {
-    return {{"SKY_PROVIDER_ENVIRONMENT", "1"},
-            {"SKY_MAP_EXTENT", glsl_float_literal(kSkyMapExtent)}};
+    gl::Defines defines = sky_map_array_defines(settings_);
+    defines["SKY_PROVIDER_ENVIRONMENT"] = "1";
+    defines["SKY_MAP_EXTENT"] = glsl_float_literal(kSkyMapExtent);
+    return defines;
   }
   void bind() const override {
     glBindTextureUnit(kSkyMapUnit, sky_map_.get());
     glBindTextureUnit(kSkyPanoramaUnit, panorama_.get());
+    if (sky_map_array_) glBindTextureUnit(kSkyMapArrayUnit, sky_map_array_.get());
   }
 
   // The photograph is one sky for every height and sun: built once.
@@ -99,16 +101,25 @@ class EnvironmentProvider final : public SkyProvider {
     return sky_map_.get();
   }
 
-  // Every layer holds the same map: a photograph has one sun.
+  // Every layer holds the same map: a photograph is one sky for one sun. The array's contract is
+  // the sun at azimuth 0 (north, +t), so the map is turned about the zenith to put the
+  // photograph's sun there; with no sun found, it is left as photographed (north is north).
   GLuint sky_map_array(gl::ShaderLibrary&, gl::GpuTimer* timer) override {
     if (sky_map_array_) return sky_map_array_.get();
     const auto start = std::chrono::steady_clock::now();
-    if (map_image_.width == 0) map_image_ = map_->stereographic_map(settings_.size, kSkyMapExtent);
+    const double north_azimuth = array_north_azimuth();
+    Image turned;
+    if (north_azimuth != 0.0) {
+      turned = map_->stereographic_map(settings_.size, kSkyMapExtent, north_azimuth);
+    } else if (map_image_.width == 0) {
+      map_image_ = map_->stereographic_map(settings_.size, kSkyMapExtent);
+    }
+    const Image& layer_image = north_azimuth != 0.0 ? turned : map_image_;
     sky_map_array_ = gl::make_texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(sky_map_array_.get(), sky_map_mip_levels(settings_.size), GL_RGBA32F,
                        settings_.size, settings_.size, settings_.array_layers);
     for (int layer = 0; layer < settings_.array_layers; ++layer)
-      upload_flipped(sky_map_array_.get(), map_image_, layer);
+      upload_flipped(sky_map_array_.get(), layer_image, layer);
     glGenerateTextureMipmap(sky_map_array_.get());
     set_sky_map_sampling(sky_map_array_.get());
     if (timer) timer->end_pass("sky.map_array");
@@ -157,6 +168,14 @@ class EnvironmentProvider final : public SkyProvider {
   double planet_radius() const override { return planet_radius_; }
 
  private:
+  // The photograph's azimuth (rad, clockwise from north) that the array's north shows: its sun's
+  // azimuth, or 0 without a sun (or with the sun at the zenith, where any azimuth is north).
+  double array_north_azimuth() const {
+    const std::optional<Vec3> sun = map_->sun_direction();
+    if (!sun || ((*sun)[0] == 0.0 && (*sun)[1] == 0.0)) return 0.0;
+    return std::atan2((*sun)[0], (*sun)[1]);
+  }
+
   std::shared_ptr<const EnvironmentMap> map_;
   double planet_radius_;
   SkyMapSettings settings_;

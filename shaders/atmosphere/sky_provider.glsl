@@ -6,7 +6,9 @@
 // - SKY_PROVIDER_ENVIRONMENT: an HDR photograph (equirectangular panorama, sun removed), no
 //   atmosphere between the camera and the scene.
 // Both provide the stereographic sky map of the ocean's eq. 27 (binding SKY_MAP_BINDING), built
-// on the host for the frame's observer and sun.
+// on the host for the frame's observer and sun, and, where the including shader defines
+// SKY_MAP_ARRAY, the sun-zenith-indexed array of such maps for views from space
+// (SkyMapArrayRadianceGrad, binding SKY_MAP_ARRAY_BINDING).
 //
 // Frames and units: positions are planet-centred (m) in a frame parallel to the local
 // east-north-up frame at the camera's nadir (x east, y north, z up; the nadir is at
@@ -26,6 +28,7 @@
 #define SKY_SINGLE_MIE_BINDING 7
 #define SKY_IRRADIANCE_BINDING 8
 #define SKY_PANORAMA_BINDING 9
+#define SKY_MAP_ARRAY_BINDING 11  // unit 10 is the glossy sky maps' (sky_shrm.glsl)
 
 // The stereographic sky map: texel (s, t) in [0, 1]^2 holds the radiance arriving from the
 // direction of u = (2 s - 1, 2 t - 1) SKY_MAP_EXTENT, u = (r_x, r_y) / (1 + r_z) in the ENU
@@ -33,43 +36,136 @@
 // of the ocean paper's multiple-reflection extension, sec. 6). Mipmapped, anisotropic.
 layout(binding = SKY_MAP_BINDING) uniform sampler2D sky_map;
 
-// Most taps of SkyMapRadianceGrad's anisotropic filter: 16, as the 16x hardware anisotropy the
-// paper's texture2DGrad had.
+// Most taps of eq. 27's anisotropic filter: 16, as the 16x hardware anisotropy the paper's
+// texture2DGrad had.
 const int SKY_MAP_MAX_TAPS = 16;
 
-// The sky map's radiance at u, filtered over the footprint spanned by the gradients du_dx, du_dy
-// (in u units): eq. 27's anisotropic fetch. The anisotropy is done here rather than by the
+// Eq. 27's footprint, as taps in texture space: the anisotropy is done here rather than by the
 // texture unit, as EXT_texture_filter_anisotropic describes it: N = min(ceil(P_max / P_min), 16)
 // trilinear taps spaced along the longer gradient, at the level of detail log2(P_max / N)
 // (P_max, P_min the gradients' lengths in texels). Why not the texture unit: llvmpipe's
 // anisotropic filter returns 0 for scattered pixels of this fetch (measured, Mesa 22.3), and an
 // explicit filter gives the same result on every driver, so the CPU reference and the golden
-// images hold everywhere. The map's own sampler is therefore isotropic.
-vec3 SkyMapRadianceGrad(vec2 u, vec2 du_dx, vec2 du_dy) {
+// images hold everywhere. The maps' own samplers are therefore isotropic. Shared by the single
+// map (SkyMapRadianceGrad) and the sun-zenith array (SkyMapArrayRadianceGrad).
+struct SkyMapFootprint {
+  vec2 st;     // the footprint's centre, texture coordinates
+  vec2 major;  // the longer gradient, texture coordinates
+  int taps;    // 1 to SKY_MAP_MAX_TAPS
+  float lod;   // level of detail of each tap
+};
+
+// The footprint of u (stereographic, u units) and its screen gradients du_dx, du_dy in a map of
+// `size` texels per side covering [-SKY_MAP_EXTENT, SKY_MAP_EXTENT]^2.
+SkyMapFootprint SkyMapFilterFootprint(vec2 u, vec2 du_dx, vec2 du_dy, float size) {
   const float scale = 0.5 / SKY_MAP_EXTENT;
-  const float size = float(textureSize(sky_map, 0).x);
-  const vec2 st = u * scale + 0.5;
   const vec2 g_x = du_dx * scale;
   const vec2 g_y = du_dy * scale;
   const float l_x = length(g_x) * size;  // texels
   const float l_y = length(g_y) * size;
-  const vec2 major = l_x >= l_y ? g_x : g_y;
   const float p_max = max(l_x, l_y);
   const float p_min = min(l_x, l_y);
-  const int taps = int(clamp(ceil(p_max / max(p_min, 1e-3 * p_max + 1e-9)), 1.0,
-                             float(SKY_MAP_MAX_TAPS)));
-  const float lod = log2(max(p_max / float(taps), 1e-9));
+  SkyMapFootprint footprint;
+  footprint.st = u * scale + 0.5;
+  footprint.major = l_x >= l_y ? g_x : g_y;
+  footprint.taps =
+      int(clamp(ceil(p_max / max(p_min, 1e-3 * p_max + 1e-9)), 1.0, float(SKY_MAP_MAX_TAPS)));
+  footprint.lod = log2(max(p_max / float(footprint.taps), 1e-9));
+  return footprint;
+}
+
+// Texture coordinates of tap i of the footprint: evenly spaced along the major axis.
+vec2 SkyMapTap(SkyMapFootprint footprint, int i) {
+  return footprint.st + ((float(i) + 0.5) / float(footprint.taps) - 0.5) * footprint.major;
+}
+
+// The sky map's radiance at u, filtered over the footprint spanned by the gradients du_dx, du_dy
+// (in u units): eq. 27's anisotropic fetch.
+vec3 SkyMapRadianceGrad(vec2 u, vec2 du_dx, vec2 du_dy) {
+  const SkyMapFootprint footprint =
+      SkyMapFilterFootprint(u, du_dx, du_dy, float(textureSize(sky_map, 0).x));
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < taps; ++i) {
-    const float offset = (float(i) + 0.5) / float(taps) - 0.5;
-    sum += textureLod(sky_map, st + offset * major, lod).rgb;
+  for (int i = 0; i < footprint.taps; ++i) {
+    sum += textureLod(sky_map, SkyMapTap(footprint, i), footprint.lod).rgb;
   }
-  return sum / float(taps);
+  return sum / float(footprint.taps);
 }
 
 vec3 SkyMapRadianceLod(vec2 u, float lod) {
   return textureLod(sky_map, u * (0.5 / SKY_MAP_EXTENT) + 0.5, lod).rgb;
 }
+
+#ifdef SKY_MAP_ARRAY
+// The sun-zenith-indexed array of sky maps for views from space (SkyProvider::sky_map_array;
+// defined by the shader that reads it, bound by the provider's bind() once built). Bruneton,
+// Neyret & Holzschuch 2010, sec. 6 ("planet-scale rendering"): each point of the sea is lit with
+// the sky map of its own local sun zenith angle. Layer k holds the map of
+// sky_provider.glsl's layout seen from the sea surface with the sun at azimuth 0 (north, +t) and
+// the zenith angle of layer k; the layers are spaced piecewise-linearly in sun zenith
+// (SkyMapSettings): SKY_MAP_ARRAY_KNEE_LAYER intervals up to SKY_MAP_ARRAY_KNEE_ZENITH, the rest
+// up to SKY_MAP_ARRAY_MAX_ZENITH (rad), SKY_MAP_ARRAY_LAYERS layers in all (float literals, from
+// the provider's defines()). Mipmapped, isotropic sampler, like sky_map.
+layout(binding = SKY_MAP_ARRAY_BINDING) uniform sampler2DArray sky_map_array;
+
+// Radiance (W m^-2 sr^-1 nm^-1) a texel of the array is read as at least, so that the logarithms
+// of the geometric interpolation stay finite (no -inf, no NaN) where a texel is 0, as in a black
+// photograph. Far below any sky: the darkest texel of the atmosphere's array (the sun 102
+// degrees from the zenith) is 1.6e-9, the day's 1e-3 to 0.15 (measured, 64 x 64 layers).
+const float SKY_MAP_ARRAY_MIN_RADIANCE = 1e-30;
+
+// The fractional layer, clamped to [0, SKY_MAP_ARRAY_LAYERS - 1], of the sun zenith angle whose
+// cosine is cos_sun_zenith (dimensionless; clamped to [-1, 1]): the piecewise-linear mapping of
+// sky_map_array_layer() in C++. acos is accurate to about 1e-4 rad on llvmpipe (1.6e-4 at worst,
+// measured in tests/gpu/sky_provider_test.cpp): under 0.01 of a 1.1-degree twilight layer, far
+// below the interpolation's own error, and enough for a layer index.
+float SkyMapArrayLayer(float cos_sun_zenith) {
+  const float zenith = acos(clamp(cos_sun_zenith, -1.0, 1.0));  // rad
+  const float last = SKY_MAP_ARRAY_LAYERS - 1.0;
+  const float layer =
+      zenith <= SKY_MAP_ARRAY_KNEE_ZENITH
+          ? SKY_MAP_ARRAY_KNEE_LAYER * zenith / SKY_MAP_ARRAY_KNEE_ZENITH
+          : SKY_MAP_ARRAY_KNEE_LAYER + (last - SKY_MAP_ARRAY_KNEE_LAYER) *
+                                           (zenith - SKY_MAP_ARRAY_KNEE_ZENITH) /
+                                           (SKY_MAP_ARRAY_MAX_ZENITH - SKY_MAP_ARRAY_KNEE_ZENITH);
+  return clamp(layer, 0.0, last);
+}
+
+// Eq. 27's anisotropic fetch (SkyMapFilterFootprint) of one layer of the array.
+vec3 SkyMapArrayLayerRadiance(SkyMapFootprint footprint, float layer) {
+  vec3 sum = vec3(0.0);
+  for (int i = 0; i < footprint.taps; ++i) {
+    sum += textureLod(sky_map_array, vec3(SkyMapTap(footprint, i), layer), footprint.lod).rgb;
+  }
+  return sum / float(footprint.taps);
+}
+
+// The array's radiance at u (stereographic, u = (r_x, r_y) / (1 + r_z) in a frame where the sun
+// is at azimuth 0, +y; SKY_MAP_EXTENT scaling as SkyMapRadianceGrad) filtered over the footprint
+// of du_dx, du_dy (u units), at the fractional `layer` (SkyMapArrayLayer; clamped to the array).
+// Between layers k = floor(layer) and k + 1 the two filtered radiances are interpolated
+// geometrically, channel by channel, L_k (L_k+1 / L_k)^f with f = layer - k: the twilight sky
+// falls exponentially with the sun's depression, which a linear mix overestimates by up to 5x at
+// a 3.3-degree spacing (the error left is in docs/atmosphere.md). What is interpolated is the two
+// layers' filtered radiances (one logarithm per layer and channel, not one per tap): where the
+// footprint is one texel this is the texel-by-texel interpolation that docs/atmosphere.md
+// measures; over a wider footprint it is the geometric mean of two averages, not the average of
+// geometric means. Written from the nearer layer, L_k 2^(f d) or L_k+1 2^((f - 1) d) with
+// d = log2(L_k+1) - log2(L_k): an integer layer returns its layer's fetch exactly, and the
+// exponent stays within half of d (at most 114), so no finite texels can overflow it.
+vec3 SkyMapArrayRadianceGrad(vec2 u, vec2 du_dx, vec2 du_dy, float layer) {
+  const SkyMapFootprint footprint =
+      SkyMapFilterFootprint(u, du_dx, du_dy, float(textureSize(sky_map_array, 0).x));
+  const float last = SKY_MAP_ARRAY_LAYERS - 1.0;
+  const float clamped = clamp(layer, 0.0, last);
+  const float k = floor(clamped);
+  const float f = clamped - k;
+  const vec3 low = max(SkyMapArrayLayerRadiance(footprint, k), vec3(SKY_MAP_ARRAY_MIN_RADIANCE));
+  const vec3 high = max(SkyMapArrayLayerRadiance(footprint, min(k + 1.0, last)),
+                        vec3(SKY_MAP_ARRAY_MIN_RADIANCE));
+  const vec3 d = log2(high) - log2(low);
+  return f <= 0.5 ? low * exp2(f * d) : high * exp2((f - 1.0) * d);
+}
+#endif  // SKY_MAP_ARRAY
 
 #ifdef SKY_PROVIDER_ATMOSPHERE
 #include "atmosphere/model.glsl"
@@ -103,8 +199,7 @@ vec3 SkySunTransmittance(vec3 point, vec3 sun_direction) {
 }
 
 // Sun and sky irradiance on a surface at `point` with unit `normal`.
-vec3 SkySunAndSkyIrradiance(vec3 point, vec3 normal, vec3 sun_direction,
-                            out vec3 sky_irradiance) {
+vec3 SkySunAndSkyIrradiance(vec3 point, vec3 normal, vec3 sun_direction, out vec3 sky_irradiance) {
   return GetSunAndSkyIrradiance(ATMOSPHERE, sky_transmittance_texture, sky_irradiance_texture,
                                 point, normal, sun_direction, sky_irradiance);
 }

@@ -1,18 +1,25 @@
 // The sky providers' maps (issue 4, point 3a and 3b): the stereographic sky map against the
 // model's CPU radiance and the paper's below-horizon radiance, its orientation (east is +s, north
 // +t), the sun-zenith-indexed array against single maps, the error of interpolating between the
-// array's layers, and an HDR photograph's map against its CPU map.
+// array's layers, the array's GLSL lookup (SkyMapArrayLayer, SkyMapArrayRadianceGrad) against a
+// CPU evaluation from the layers read back and against the single map's fetch, and an HDR
+// photograph's map and array against its CPU map (the array turned to put its sun north).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <vector>
 
 #include "test_support.hpp"
 #include "thalassa/atmosphere/environment_map.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/atmosphere/model.hpp"
+#include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/objects.hpp"
+#include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
 
 namespace thalassa {
@@ -41,11 +48,37 @@ glm::dvec3 texel_direction(int i, int j, int size) {
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
+// The u of the centre of texel (i, j) (j counted from the bottom row), rounded to float as the
+// shader receives it. At a texel centre GL_LINEAR filtering returns the texel itself whatever
+// the driver's interpolation weights (llvmpipe's have 8 bits of sub-texel precision), so a CPU
+// evaluation needs no model of the filter.
+glm::vec2 texel_centre_u(int i, int j, int size) {
+  return glm::vec2(((glm::dvec2(i, j) + 0.5) / double(size) * 2.0 - 1.0) * kSkyMapExtent);
+}
+
+// One evaluation of tests/gpu/shaders/sky_map_array.frag: stereographic u and its gradients
+// (u units), the array's fractional layer and the cosine of the sun zenith angle.
+struct Lookup {
+  glm::vec2 u{0.0f}, du_dx{0.0f}, du_dy{0.0f};
+  float layer = 0.0f;
+  float cos_sun_zenith = 1.0f;
+};
+
+// The geometric interpolation of SkyMapArrayRadianceGrad in double, per channel, from two
+// texels a and b at the fraction f, with the shader's floor on the texels
+// (SKY_MAP_ARRAY_MIN_RADIANCE).
+constexpr double kMinRadiance = 1e-30;
+double geometric(double a, double b, double f) {
+  return std::exp((1.0 - f) * std::log(std::max(a, kMinRadiance)) +
+                  f * std::log(std::max(b, kMinRadiance)));
+}
+
 class SkyProviderTest : public ::testing::Test {
  protected:
   void SetUp() override {
     context_ = test::make_test_context();
-    shaders_ = std::make_unique<gl::ShaderLibrary>();
+    shaders_ = std::make_unique<gl::ShaderLibrary>(
+        std::vector<std::filesystem::path>{THALASSA_SOURCE_DIR "/tests/gpu/shaders"});
     model_ = atmosphere::AtmosphereModel::create(atmosphere::AtmosphereParameters::earth());
     settings_.size = kSize;
     provider_ = atmosphere::make_atmosphere_provider(model_, settings_);
@@ -54,6 +87,58 @@ class SkyProviderTest : public ::testing::Test {
     const double z = zenith_deg * M_PI / 180.0, a = azimuth_deg * M_PI / 180.0;
     return {std::sin(z) * std::sin(a), std::sin(z) * std::cos(a), std::cos(z)};
   }
+
+  // Evaluates FUNCTION (1: the array's lookup, 2: the single map's fetch) of
+  // tests/gpu/shaders/sky_map_array.frag at each lookup, with the provider's textures bound;
+  // returns one RGBA per lookup, in order.
+  std::vector<glm::vec4> evaluate(int function, const std::vector<Lookup>& lookups) {
+    return evaluate(*provider_, function, lookups);
+  }
+  std::vector<glm::vec4> evaluate(const atmosphere::SkyProvider& provider, int function,
+                                  const std::vector<Lookup>& lookups) {
+    const int width = int(std::min<std::size_t>(lookups.size(), kEvaluateWidth));
+    const int height = int((lookups.size() + width - 1) / width);
+    std::vector<float> u_texels(std::size_t(width) * height * 4, 0.0f);
+    std::vector<float> layer_texels(u_texels.size(), 0.0f);
+    for (std::size_t n = 0; n < lookups.size(); ++n) {
+      const Lookup& l = lookups[n];
+      const float u[4] = {l.u.x, l.u.y, l.du_dx.x, l.du_dx.y};
+      const float layer[4] = {l.du_dy.x, l.du_dy.y, l.layer, l.cos_sun_zenith};
+      std::copy_n(u, 4, &u_texels[n * 4]);
+      std::copy_n(layer, 4, &layer_texels[n * 4]);
+    }
+    auto upload = [&](const std::vector<float>& texels) {
+      gl::Texture texture = gl::make_texture(GL_TEXTURE_2D);
+      glTextureStorage2D(texture.get(), 1, GL_RGBA32F, width, height);
+      glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+      glTextureSubImage2D(texture.get(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
+      return texture;
+    };
+    const gl::Texture u_texture = upload(u_texels), layer_texture = upload(layer_texels);
+    gl::Defines defines = provider.defines();
+    defines["FUNCTION"] = std::to_string(function);
+    if (function == 1) defines["SKY_MAP_ARRAY"] = "1";
+    const GLuint program = shaders_->program(
+        {.vertex = "engine/fullscreen.vert", .fragment = "sky_map_array.frag", .defines = defines});
+    gl::HdrTarget target(width, height);
+    const gl::VertexArray vertex_array = gl::make_vertex_array();
+    target.begin();
+    glUseProgram(program);
+    provider.bind();
+    glBindTextureUnit(0, u_texture.get());
+    glBindTextureUnit(1, layer_texture.get());
+    glBindVertexArray(vertex_array.get());
+    gl::draw_fullscreen_pass();
+    const std::vector<float> top_down = target.read_rgba_top_down();
+    std::vector<glm::vec4> results(lookups.size());
+    for (std::size_t n = 0; n < lookups.size(); ++n) {
+      const std::size_t x = n % width, y = n / width;
+      const float* p = &top_down[((height - 1 - y) * width + x) * 4];
+      results[n] = glm::vec4(p[0], p[1], p[2], p[3]);
+    }
+    return results;
+  }
+  static constexpr std::size_t kEvaluateWidth = 256;
 
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<gl::ShaderLibrary> shaders_;
@@ -116,7 +201,7 @@ TEST_F(SkyProviderTest, SkyMapIsRebuiltOnlyWhenTheSunMoves) {
   EXPECT_NE(read_level0(b, kSize), first);
 }
 
-// Each layer is the single map of its sun zenith; between layers, linear interpolation of the
+// Each layer is the single map of its sun zenith; between layers, geometric interpolation of the
 // two nearest stays within a stated error of the exact map (issue 4, point 3b).
 TEST_F(SkyProviderTest, ArrayLayersInterpolateWithinAStatedError) {
   const GLuint array = provider_->sky_map_array(*shaders_, nullptr);
@@ -168,7 +253,7 @@ TEST_F(SkyProviderTest, ArrayLayersInterpolateWithinAStatedError) {
         const glm::dvec2 u = ((glm::dvec2(i, j) + 0.5) / double(kSize) * 2.0 - 1.0) * kSkyMapExtent;
         if (glm::length(u) > 0.95) continue;
         const std::size_t n = (std::size_t(j) * kSize + i) * 4;
-        // Geometric interpolation per texel and channel, as SkyMapArrayRadiance does it.
+        // Geometric interpolation per texel and channel, as SkyMapArrayRadianceGrad does it.
         float mid[3];
         for (int c = 0; c < 3; ++c)
           mid[c] = float(
@@ -193,6 +278,222 @@ TEST_F(SkyProviderTest, ArrayLayersInterpolateWithinAStatedError) {
                 band.mean, band.worst);
     EXPECT_LT(band.mean, band.mean_bound) << band.below;
     EXPECT_LT(band.worst, band.worst_bound) << band.below;
+  }
+}
+
+// bind() binds the array to kSkyMapArrayUnit once it is built, and leaves that unit alone before.
+TEST_F(SkyProviderTest, BindBindsTheArrayOnceBuilt) {
+  auto array_binding = [] {
+    GLint name = 0;
+    glActiveTexture(GL_TEXTURE0 + atmosphere::kSkyMapArrayUnit);
+    glGetIntegerv(GL_TEXTURE_BINDING_2D_ARRAY, &name);
+    glActiveTexture(GL_TEXTURE0);
+    return GLuint(name);
+  };
+  const gl::Texture other = gl::make_texture(GL_TEXTURE_2D_ARRAY);
+  glBindTextureUnit(atmosphere::kSkyMapArrayUnit, other.get());
+  provider_->bind();
+  EXPECT_EQ(array_binding(), other.get());
+  const GLuint array = provider_->sky_map_array(*shaders_, nullptr);
+  provider_->bind();
+  EXPECT_EQ(array_binding(), array);
+}
+
+// SkyMapArrayRadianceGrad with zero gradients at texel centres is one bilinear tap of level 0
+// that returns the texel, so it must be the layers' texels interpolated geometrically, as the CPU
+// does it in double from the layers read back: an integer layer reproduces its layer, and a
+// fractional one the interpolation, to float precision.
+TEST_F(SkyProviderTest, ArrayLookupReproducesLayersAndInterpolatesGeometrically) {
+  const GLuint array = provider_->sky_map_array(*shaders_, nullptr);
+  const int last = settings_.array_layers - 1, knee = settings_.array_knee_layer;
+  std::vector<std::vector<float>> layers;
+  for (int k = 0; k <= last; ++k) layers.push_back(read_level0(array, kSize, k));
+  // Every layer, every interval halfway, and fractions near both ends of the first interval, the
+  // two around the knee and the last.
+  std::vector<float> fractional_layers;
+  std::vector<float> all_layers;
+  for (int k = 0; k <= last; ++k) all_layers.push_back(float(k));
+  for (int k = 0; k < last; ++k) fractional_layers.push_back(k + 0.5f);
+  for (int k : {0, knee - 1, knee, last - 1})
+    for (float f : {0.01f, 0.3f, 0.99f}) fractional_layers.push_back(k + f);
+  all_layers.insert(all_layers.end(), fractional_layers.begin(), fractional_layers.end());
+  std::vector<Lookup> lookups;
+  for (float layer : all_layers)
+    for (int j = 0; j < kSize; ++j)
+      for (int i = 0; i < kSize; ++i)
+        lookups.push_back({.u = texel_centre_u(i, j, kSize), .layer = layer});
+  const std::vector<glm::vec4> gpu = evaluate(1, lookups);
+  double worst_exact = 0.0, worst_fractional = 0.0;
+  for (std::size_t n = 0; n < lookups.size(); ++n) {
+    const int k = std::min(int(std::floor(lookups[n].layer)), last - 1);
+    const double f = double(lookups[n].layer) - k;
+    const std::size_t texel = (n % (std::size_t(kSize) * kSize)) * 4;
+    for (int c = 0; c < 3; ++c) {
+      const double expected = geometric(layers[k][texel + c], layers[k + 1][texel + c], f);
+      ASSERT_TRUE(std::isfinite(gpu[n][c])) << n;
+      const double error = std::abs(gpu[n][c] - expected) / std::max(expected, kMinRadiance);
+      double& worst = f == 0.0 || f == 1.0 ? worst_exact : worst_fractional;
+      worst = std::max(worst, error);
+    }
+  }
+  std::printf(
+      "array lookup at texel centres: worst relative error %.3g at integer layers, %.3g "
+      "between layers\n",
+      worst_exact, worst_fractional);
+  // An integer layer returns the texel (the interpolation is written from the nearer layer);
+  // between layers, float log2 and exp2 (a few ulp each, of exponents up to ~20) against double.
+  EXPECT_LT(worst_exact, 1e-5);
+  EXPECT_LT(worst_fractional, 1e-4);
+}
+
+// SkyMapArrayLayer is sky_map_array_layer of the zenith whose cosine it is given, within what
+// acos's float accuracy allows, and clamps beyond the array.
+TEST_F(SkyProviderTest, ArrayLayerFollowsTheSunZenith) {
+  std::vector<Lookup> lookups;
+  std::vector<double> zeniths;    // rad
+  constexpr double kStep = 0.05;  // deg
+  for (double deg = 0.0; deg <= 180.0 + 1e-9; deg += kStep) zeniths.push_back(deg * M_PI / 180.0);
+  for (double z : zeniths) lookups.push_back({.cos_sun_zenith = float(std::cos(z))});
+  // Exactly overhead and exactly underfoot, and cosines outside [-1, 1] (clamped).
+  for (float c : {1.0f, -1.0f, 1.5f, -2.0f}) lookups.push_back({.cos_sun_zenith = c});
+  const std::vector<glm::vec4> gpu = evaluate(1, lookups);
+  const double last = settings_.array_layers - 1;
+  // Layers per radian of sun zenith beyond the knee, where the layers are densest (52 / rad).
+  const double slope = (last - settings_.array_knee_layer) /
+                       (settings_.array_max_sun_zenith - settings_.array_knee_zenith);
+  // acos's error on llvmpipe, 1.6e-4 rad at worst (printed below), with a margin, at the
+  // twilight layers' slope (a bound for the day's too); and the float rounding of the layer
+  // formula (a few ulp of the last layer).
+  constexpr double kAcosError = 3e-4;  // rad
+  const double tolerance = kAcosError * slope + 1e-5 * last;
+  double worst = 0.0, worst_angle = 0.0;
+  for (std::size_t n = 0; n < lookups.size(); ++n) {
+    ASSERT_TRUE(std::isfinite(gpu[n].w)) << n;
+    ASSERT_TRUE(gpu[n].w >= 0.0f && gpu[n].w <= float(last)) << n << ": " << gpu[n].w;
+    for (int c = 0; c < 3; ++c) ASSERT_TRUE(std::isfinite(gpu[n][c])) << n;
+    const double c = std::clamp(double(lookups[n].cos_sun_zenith), -1.0, 1.0);
+    // The CPU layer of the zenith the GPU was given (its float cosine), so that only the GPU's
+    // arithmetic is measured.
+    const double zenith = std::acos(c);
+    const double expected = atmosphere::sky_map_array_layer(settings_, zenith);
+    const double error = std::abs(gpu[n].w - expected);
+    worst = std::max(worst, error);
+    // The angle acos's error amounts to, where the mapping is not clamped.
+    if (zenith > 1e-3 && zenith < settings_.array_max_sun_zenith - 1e-3) {
+      const double local = zenith <= settings_.array_knee_zenith
+                               ? settings_.array_knee_layer / settings_.array_knee_zenith
+                               : slope;
+      worst_angle = std::max(worst_angle, error / local);
+    }
+    EXPECT_LE(error, tolerance) << "zenith " << zenith * 180.0 / M_PI << " deg";
+    // Beyond the array (by more than acos's error) the layer is exactly the last.
+    if (zenith > settings_.array_max_sun_zenith + 10.0 * kAcosError) {
+      EXPECT_EQ(gpu[n].w, float(last)) << zenith;
+    }
+  }
+  std::printf("SkyMapArrayLayer: worst error %.3g layers (%.3g rad of zenith; tolerance %.3g)\n",
+              worst, worst_angle, tolerance);
+  EXPECT_EQ(gpu[zeniths.size()].w, 0.0f);             // cos = 1: the sun overhead, layer 0
+  EXPECT_EQ(gpu[zeniths.size() + 1].w, float(last));  // cos = -1
+  EXPECT_EQ(gpu[zeniths.size() + 2].w, 0.0f);
+  EXPECT_EQ(gpu[zeniths.size() + 3].w, float(last));
+}
+
+// Finite everywhere: u outside the map (clamped to its edge texels), layers outside the array
+// (clamped to the first and last), footprints from none to far larger than the map.
+TEST_F(SkyProviderTest, ArrayLookupIsFiniteAndClampedOutsideTheMapAndTheArray) {
+  const GLuint array = provider_->sky_map_array(*shaders_, nullptr);
+  const int last = settings_.array_layers - 1;
+  const auto first_layer = read_level0(array, kSize, 0);
+  const auto last_layer = read_level0(array, kSize, last);
+  const auto layer_15 = read_level0(array, kSize, 15);
+  const auto layer_16 = read_level0(array, kSize, 16);
+  // Far outside the map (OceanStereographic goes up to |u| = 1000), zero gradients: the corner
+  // texels, whatever the filter weights.
+  const glm::vec2 corners[] = {
+      {-1e3f, -1e3f}, {1e3f, -1e3f}, {-1e3f, 1e3f}, {1e3f, 1e3f}, {-1e6f, -5e5f}};
+  const std::size_t corner_texel[] = {0, std::size_t(kSize - 1), std::size_t(kSize - 1) * kSize,
+                                      std::size_t(kSize) * kSize - 1, 0};
+  const float layers[] = {-5.0f, 0.0f, 15.5f, float(last), 1e6f};
+  std::vector<Lookup> lookups;
+  for (float layer : layers)
+    for (const glm::vec2& u : corners) lookups.push_back({.u = u, .layer = layer});
+  const std::size_t clamped_count = lookups.size();
+  // Footprints from tiny to wider than the map, isotropic and stretched, inside and outside.
+  for (float length : {0.0f, 1e-6f, 0.01f, 1.0f, 10.0f, 1e4f})
+    for (float ratio : {1.0f, 16.0f, 1e3f})
+      for (const glm::vec2 u : {glm::vec2(0.0f), glm::vec2(0.99f, 0.1f), glm::vec2(2.0f, -3.0f)})
+        for (float layer : {0.0f, 11.7f, float(last) - 0.5f, float(last)})
+          lookups.push_back({.u = u,
+                             .du_dx = glm::vec2(length, 0.3f * length),
+                             .du_dy = glm::vec2(-0.3f * length, length) / ratio,
+                             .layer = layer});
+  const std::vector<glm::vec4> gpu = evaluate(1, lookups);
+  for (std::size_t n = 0; n < lookups.size(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(gpu[n][c])) << n;
+      EXPECT_GT(gpu[n][c], 0.0f) << n;
+    }
+  for (std::size_t n = 0; n < clamped_count; ++n) {
+    const std::size_t texel = corner_texel[n % std::size(corners)] * 4;
+    const float layer = lookups[n].layer;
+    for (int c = 0; c < 3; ++c) {
+      const double expected = layer <= 0.0f ? first_layer[texel + c]
+                              : layer >= float(last)
+                                  ? last_layer[texel + c]
+                                  : geometric(layer_15[texel + c], layer_16[texel + c], 0.5);
+      EXPECT_NEAR(gpu[n][c], expected, 1e-4 * expected) << "layer " << layer << " corner " << n;
+    }
+  }
+}
+
+// With footprints, the array read at an integer layer is the single map of that layer's sun
+// zenith read by SkyMapRadianceGrad: the same filter (SkyMapFilterFootprint) on the same texels.
+TEST_F(SkyProviderTest, ArrayLookupAtALayerIsTheSingleMapsFetch) {
+  provider_->sky_map_array(*shaders_, nullptr);
+  std::vector<Lookup> lookups;
+  constexpr int kGrid = 24;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const int n = j * kGrid + i;
+      // u over the map and a little beyond; gradient lengths from 1e-3 to 1 u unit (0.03 to 26
+      // texels of a 64-texel map), turned and stretched up to past the 16-tap limit.
+      const glm::vec2 u = glm::vec2((i + 0.5f) / kGrid, (j + 0.5f) / kGrid) * 2.8f - 1.4f;
+      const float length = std::pow(10.0f, -3.0f + 3.0f * float((n * 7) % 11) / 10.0f);
+      const float ratio = std::array<float, 5>{1.0f, 2.0f, 5.0f, 16.0f, 40.0f}[n % 5];
+      const float angle = 0.7f * float(n);
+      const glm::vec2 major(std::cos(angle), std::sin(angle));
+      lookups.push_back({.u = u,
+                         .du_dx = length * major,
+                         .du_dy = length / ratio * glm::vec2(-major.y, major.x)});
+    }
+  for (int k : {0, settings_.array_knee_layer, 20, settings_.array_layers - 1}) {
+    const double zenith = atmosphere::sky_map_array_zenith(settings_, k) * 180.0 / M_PI;
+    provider_->sky_map(0.0, sun_at(zenith, 0.0), *shaders_, nullptr);
+    for (Lookup& lookup : lookups) lookup.layer = float(k);
+    const std::vector<glm::vec4> from_array = evaluate(1, lookups);
+    const std::vector<glm::vec4> from_map = evaluate(2, lookups);
+    // The neighbouring layer, to show that the comparison tells layers apart.
+    for (Lookup& lookup : lookups) lookup.layer = float(k == 0 ? 1 : k - 1);
+    const std::vector<glm::vec4> from_neighbour = evaluate(1, lookups);
+    double sum = 0.0, worst = 0.0, neighbour_sum = 0.0;
+    for (std::size_t n = 0; n < lookups.size(); ++n)
+      for (int c = 0; c < 3; ++c) {
+        ASSERT_TRUE(std::isfinite(from_array[n][c])) << n;
+        const double scale = std::max(double(from_map[n][c]), 1e-30);
+        const double error = std::abs(from_array[n][c] - from_map[n][c]) / scale;
+        sum += error;
+        worst = std::max(worst, error);
+        neighbour_sum += std::abs(from_neighbour[n][c] - from_map[n][c]) / scale;
+      }
+    const double mean = sum / (3.0 * lookups.size());
+    const double neighbour_mean = neighbour_sum / (3.0 * lookups.size());
+    std::printf(
+        "layer %2d (sun zenith %6.2f deg): array vs single map with footprints: mean "
+        "relative difference %.3g, worst %.3g (the neighbouring layer: mean %.3g)\n",
+        k, zenith, mean, worst, neighbour_mean);
+    EXPECT_LT(mean, 1e-4) << "layer " << k;
+    EXPECT_GT(neighbour_mean, 5e-3) << "layer " << k;
   }
 }
 
@@ -227,6 +528,110 @@ TEST(EnvironmentProviderTest, SkyMapIsTheCpuMapWithNorthUp) {
   const float* east = &gpu[(std::size_t(kSize / 2) * kSize + kSize * 3 / 4) * 4];
   const float* west = &gpu[(std::size_t(kSize / 2) * kSize + kSize / 4) * 4];
   EXPECT_GT(east[0], west[0]);
+  // No sun in this smooth sky: the array's layers are the same map, not turned.
+  ASSERT_FALSE(map->sun());
+  const GLuint array = provider->sky_map_array(shaders, nullptr);
+  for (int k : {0, settings.array_layers - 1}) EXPECT_EQ(read_level0(array, kSize, k), gpu);
+}
+
+// The array of a photograph with a sun: every layer is the photograph's map turned about the
+// zenith so that its sun is north (+t), the array's contract (SkyProvider::sky_map_array).
+TEST_F(SkyProviderTest, EnvironmentArrayTurnsThePhotographsSunNorth) {
+  // A sky of 1 with a circumsolar glow (peak 4, 1/e radius 15 deg) around a sun at azimuth
+  // 120 deg, elevation 30 deg, and the sun itself: the texel holding its centre at 1e5, far above
+  // the extraction's threshold (20 x the 99th percentile, here ~4).
+  constexpr int kWidth = 128, kHeight = 64;
+  constexpr double kSunAzimuth = 120.0, kSunZenith = 60.0;  // deg
+  const glm::dvec3 sun = sun_at(kSunZenith, kSunAzimuth);
+  Image photo;
+  photo.width = kWidth;
+  photo.height = kHeight;
+  photo.rgba.assign(std::size_t(kWidth) * kHeight * 4, 1.0f);
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      const double theta = M_PI * (y + 0.5) / kHeight, alpha = 2.0 * M_PI * (x + 0.5) / kWidth;
+      const glm::dvec3 d(std::sin(alpha) * std::sin(theta), std::cos(alpha) * std::sin(theta),
+                         std::cos(theta));
+      const double angle = std::acos(std::clamp(glm::dot(d, sun), -1.0, 1.0));
+      const double glow = 1.0 + 3.0 * std::exp(-std::pow(angle / (15.0 * M_PI / 180.0), 2));
+      for (int c = 0; c < 3; ++c) photo.pixel(x, y)[c] = float(glow);
+    }
+  const int sun_x = int(kSunAzimuth / 360.0 * kWidth), sun_y = int(kSunZenith / 180.0 * kHeight);
+  for (int c = 0; c < 3; ++c) photo.pixel(sun_x, sun_y)[c] = 1e5f;
+  auto map = std::make_shared<const atmosphere::EnvironmentMap>(photo);
+  ASSERT_TRUE(map->sun()) << map->sun_search();
+  const auto sun_direction = *map->sun_direction();
+  const double azimuth = std::atan2(sun_direction[0], sun_direction[1]);
+  atmosphere::SkyMapSettings settings;
+  settings.size = kSize;
+  auto provider = atmosphere::make_environment_provider(map, 6371000.0, settings);
+  const GLuint array = provider->sky_map_array(*shaders_, nullptr);
+  const GLuint single = provider->sky_map(0.0, sun, *shaders_, nullptr);
+  // Every layer is the CPU map turned by the sun's azimuth, rows flipped (north is +t).
+  const Image cpu = map->stereographic_map(kSize, kSkyMapExtent, azimuth);
+  const auto layer0 = read_level0(array, kSize, 0);
+  for (int j = 0; j < kSize; ++j)
+    for (int i = 0; i < kSize; ++i)
+      for (int c = 0; c < 3; ++c)
+        ASSERT_EQ(layer0[(std::size_t(j) * kSize + i) * 4 + c], cpu.pixel(i, kSize - 1 - j)[c])
+            << i << " " << j;
+  for (int k = 1; k < settings.array_layers; ++k)
+    ASSERT_EQ(read_level0(array, kSize, k), layer0) << "layer " << k;
+  // The brightest region (texels within 10% of the brightest, inside the horizon): north in the
+  // array, at the photograph's 120 deg in the single map (which keeps the ENU frame).
+  auto brightest_azimuth = [&](const std::vector<float>& texels) {  // deg
+    double top = 0.0;
+    for (int pass = 0; pass < 2; ++pass) {
+      glm::dvec2 sum(0.0);
+      for (int j = 0; j < kSize; ++j)
+        for (int i = 0; i < kSize; ++i) {
+          const glm::dvec2 u(texel_centre_u(i, j, kSize));
+          const double l = luminance(&texels[(std::size_t(j) * kSize + i) * 4]);
+          if (glm::length(u) > 0.95) continue;
+          if (pass == 0) top = std::max(top, l);
+          if (pass == 1 && l >= 0.9 * top) sum += glm::normalize(u);
+        }
+      if (pass == 1) return std::atan2(sum.x, sum.y) * 180.0 / M_PI;
+    }
+    return 0.0;
+  };
+  const double array_azimuth = brightest_azimuth(layer0);
+  const double map_azimuth = brightest_azimuth(read_level0(single, kSize));
+  std::printf(
+      "photograph's sun at azimuth %.2f deg; brightest sky at %.2f deg in the single "
+      "map, %.2f deg in the array\n",
+      azimuth * 180.0 / M_PI, map_azimuth, array_azimuth);
+  // Within a texel of a 64-texel map at the glow's |u| = tan(30 deg) (4 deg), with a margin.
+  EXPECT_NEAR(array_azimuth, 0.0, 6.0);
+  EXPECT_NEAR(map_azimuth, kSunAzimuth, 6.0);
+}
+
+// A black photograph: every texel of the array is 0, and the lookup returns the floor of its
+// geometric interpolation (SKY_MAP_ARRAY_MIN_RADIANCE), not the NaN or -inf of log(0).
+TEST_F(SkyProviderTest, ArrayLookupOfABlackSkyIsFinite) {
+  Image photo;
+  photo.width = 16;
+  photo.height = 8;
+  photo.rgba.assign(16 * 8 * 4, 0.0f);
+  auto map = std::make_shared<const atmosphere::EnvironmentMap>(photo);
+  atmosphere::SkyMapSettings settings;
+  settings.size = 8;
+  auto provider = atmosphere::make_environment_provider(map, 6371000.0, settings);
+  provider->sky_map_array(*shaders_, nullptr);
+  std::vector<Lookup> lookups;
+  for (float layer : {0.0f, 0.5f, 11.25f, float(settings.array_layers - 1)})
+    for (float length : {0.0f, 0.1f})
+      lookups.push_back({.u = {0.3f, -0.2f},
+                         .du_dx = {length, 0.0f},
+                         .du_dy = {0.0f, 0.2f * length},
+                         .layer = layer});
+  const std::vector<glm::vec4> gpu = evaluate(*provider, 1, lookups);
+  for (std::size_t n = 0; n < lookups.size(); ++n)
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_TRUE(std::isfinite(gpu[n][c])) << n;
+      EXPECT_GE(gpu[n][c], 0.0f);
+      EXPECT_LE(gpu[n][c], 1.0001 * kMinRadiance);
+    }
 }
 
 }  // namespace

@@ -434,6 +434,41 @@ TEST(EnvironmentMapStereographicMap, RowsAndColumnsFaceNorthAndEast) {
     }
 }
 
+// north_azimuth turns the sky about the zenith: with pi / 2 the map's north shows the
+// photograph's east, so the turned map at u = (u_x, u_y) is the map at (u_y, -u_x), which for a
+// square map is texel (i, j) of the turned map = texel (size - 1 - j, i) (the sample grid within a
+// texel is symmetric under the quarter turn). A turn by a full circle changes nothing.
+TEST(EnvironmentMapStereographicMap, NorthAzimuthTurnsTheSkyAboutTheZenith) {
+  const int height = 64, width = 2 * height;
+  const Image image = MakeImage(width, height, [&](int x, int y) {
+    const Vec3 d = Direction(kPi * (y + 0.5) / height, 2.0 * kPi * (x + 0.5) / width);
+    return Rgb{2.0 + d[0] + 0.5 * d[1], 1.0 + 0.3 * d[0] * d[1], 1.5 - 0.2 * d[1]};
+  });
+  const EnvironmentMap map(image);
+  const int size = 16;
+  const Image north = map.stereographic_map(size);
+  const Image east = map.stereographic_map(size, kSkyMapExtent, kPi / 2.0);
+  const Image around = map.stereographic_map(size, kSkyMapExtent, 2.0 * kPi);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i)
+      for (int c = 0; c < 3; ++c) {
+        ExpectRelativeNear(east.pixel(i, j)[c], north.pixel(size - 1 - j, i)[c], 1e-6, "east");
+        ExpectRelativeNear(around.pixel(i, j)[c], north.pixel(i, j)[c], 1e-6, "full turn");
+      }
+  // The sky L_R = 2 + r_x + 0.5 r_y turned by pi / 2 reads 2 + r_y - 0.5 r_x at the map's r:
+  // the map's north (+u_y) is as bright as the photograph's east. At the texel centres, to the
+  // map's smoothing (as RowsAndColumnsFaceNorthAndEast).
+  const Image probe = map.stereographic_map(size, 1.0, kPi / 2.0);
+  for (int j = 0; j < size; ++j)
+    for (int i = 0; i < size; ++i) {
+      const double ux = -1.0 + 2.0 * (i + 0.5) / size, uy = 1.0 - 2.0 * (j + 0.5) / size;
+      if (std::hypot(ux, uy) > 0.95) continue;
+      const Vec3 r = stereographic_direction({ux, uy});
+      EXPECT_NEAR(probe.pixel(i, j)[0], 2.0 + r[1] - 0.5 * r[0], 0.01) << i << " " << j;
+    }
+  EXPECT_THROW(map.stereographic_map(size, kSkyMapExtent, NAN), std::invalid_argument);
+}
+
 TEST(EnvironmentMapPanorama, ReproducesThePhotographAndTurnsWithTheOffset) {
   const int height = 16, width = 2 * height;
   const Image image = MakeImage(width, height, [&](int x, int y) {

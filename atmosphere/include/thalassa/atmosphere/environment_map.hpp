@@ -216,7 +216,12 @@ class EnvironmentMap {
   // n x n sub-squares, n the smallest integer >= 4 that makes the samples at most one photograph
   // row apart at the zenith (where one u unit spans the most angle, 2 rad), at most 16. Throws
   // std::invalid_argument unless size >= 1 and extent is finite and > 0.
-  Image stereographic_map(int size = 512, double extent = kSkyMapExtent) const;
+  // `north_azimuth` (radians clockwise from north, finite) turns the sky about the zenith: the
+  // map's north (+u_y, row 0) looks at that azimuth of the photograph, and u at azimuth a in the
+  // map at a + north_azimuth. 0 gives the map in the ENU frame; the sky-map array puts the
+  // photograph's sun north with it (SkyProvider::sky_map_array).
+  Image stereographic_map(int size = 512, double extent = kSkyMapExtent,
+                          double north_azimuth = 0.0) const;
   // An equirectangular panorama, width x width / 2 (width even, >= 2), RGBA float, alpha 1, in
   // the photograph's convention with the left edge at azimuth `north_offset` (radians clockwise
   // from north; 0: the left edge looks north), sun removed, the photograph's own ground below

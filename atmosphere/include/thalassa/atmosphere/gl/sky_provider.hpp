@@ -39,6 +39,8 @@ inline constexpr GLuint kSkyScatteringUnit = 6;
 inline constexpr GLuint kSkySingleMieUnit = 7;
 inline constexpr GLuint kSkyIrradianceUnit = 8;
 inline constexpr GLuint kSkyPanoramaUnit = 9;
+// Unit 10 is the glossy sky maps' (kSkyShrmUnit, sky_shrm.hpp).
+inline constexpr GLuint kSkyMapArrayUnit = 11;  // SKY_MAP_ARRAY_BINDING
 
 struct SkyMapSettings {
   int size = 512;         // texels per side (issue 4: 512 x 512 by default)
@@ -71,9 +73,13 @@ class SkyProvider {
   virtual std::string kind() const = 0;
   // What this provider created so far (for `built` in the statistics).
   virtual std::vector<std::string> built() const = 0;
-  // The shader defines of sky_provider.glsl for this provider.
+  // The shader defines of sky_provider.glsl for this provider, the constants of the array's
+  // lookup (SKY_MAP_ARRAY_LAYERS, _KNEE_LAYER, _KNEE_ZENITH, _MAX_ZENITH) included whether or
+  // not the array is built; a shader that reads the array adds SKY_MAP_ARRAY itself.
   virtual gl::Defines defines() const = 0;
-  // Binds the textures the shaders read (the sky map of the last sky_map() call included).
+  // Binds the textures the shaders read (the sky map of the last sky_map() call included, and
+  // the array to kSkyMapArrayUnit once sky_map_array() has built it; unit 11 is left alone
+  // before).
   virtual void bind() const = 0;
 
   // (a) The stereographic sky map seen from `height` with the sun at `sun` (ENU), as a mipmapped
@@ -82,7 +88,12 @@ class SkyProvider {
   virtual GLuint sky_map(double height, const glm::dvec3& sun, gl::ShaderLibrary& shaders,
                          gl::GpuTimer* timer) = 0;
   // (b) The sun-zenith-indexed array of such maps seen from the sea surface, the sun at azimuth
-  // 0 (north) and zenith angle layer * max / (layers - 1): a mipmapped 2D array texture.
+  // 0 (north, +t) and the zenith angle sky_map_array_zenith(layer): a mipmapped 2D array
+  // texture, read by SkyMapArrayRadianceGrad at the layer SkyMapArrayLayer gives for a point's
+  // local sun zenith (Bruneton, Neyret & Holzschuch 2010, sec. 6, planet-scale rendering). An
+  // HDR photograph is one sky for one sun: its provider fills every layer with the same map,
+  // turned about the zenith so that the photograph's sun is at azimuth 0 (as photographed when
+  // no sun was found in it).
   virtual GLuint sky_map_array(gl::ShaderLibrary& shaders, gl::GpuTimer* timer) = 0;
   virtual const SkyMapSettings& sky_map_settings() const = 0;
   // Milliseconds spent building the last sky map and the array (0 until built).
