@@ -69,6 +69,14 @@ class OceanNode final : public gl::Node {
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
+    // Above kResolvedFadeStart the sky's reflection hands over to the view from space's array
+    // (not with shrm, whose glossy maps are a method of their own, nor under water).
+    const double array_weight = 1.0 - resolved_wave_scale(inputs.camera_height);
+    const bool sky_array = options_.sky && !options_.sky_shrm && !underwater && array_weight > 0.0;
+    if (sky_array) {
+      lighting_defines["SKY_MAP_ARRAY"] = "1";
+      provider_->sky_map_array(context.shaders, &context.timer);
+    }
     const GLuint lighting = context.shaders.program({.vertex = "engine/fullscreen.vert",
                                                      .fragment = "ocean/ocean_lighting.frag",
                                                      .defines = lighting_defines});
@@ -120,6 +128,8 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(lighting, location(lighting, "atmosphere_radius"), float(radius));
     glProgramUniform1f(lighting, location(lighting, "horizon_distance"),
                        float(std::sqrt(height * (2.0 * radius + height))));
+    if (sky_array)
+      glProgramUniform1f(lighting, location(lighting, "sky_array_weight"), float(array_weight));
     provider_->bind();
     if (glossy_sky_) glossy_sky_->bind();
     if (underwater) {

@@ -16,6 +16,13 @@
 #ifdef SKY_SHRM
 #include "atmosphere/sky_shrm.glsl"
 #endif
+#ifdef SKY_MAP_ARRAY
+#include "ocean/sky_array_reflection.glsl"
+// Weight of the sky from the sun-zenith array against the nadir's single map, 0 to 1 as the
+// camera rises through the hand-over to the view from space (1 - resolved_wave_scale,
+// ocean/gl/ocean_node.hpp): at 20 km the grid reflects the sky exactly as the view from space.
+uniform float sky_array_weight;
+#endif
 
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
 
@@ -118,10 +125,15 @@ void main() {
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
 #ifdef SKY_NINE_SAMPLES
-  sea += fresnel * SkyNineSamples(v, t_x, t_y, n, sigma, du_x, du_y);
+  vec3 sky = SkyNineSamples(v, t_x, t_y, n, sigma, du_x, du_y);
 #else
-  sea += fresnel * SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
+  vec3 sky = SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
 #endif
+#ifdef SKY_MAP_ARRAY
+  sky = mix(sky, OceanSkyArrayReflection(FrameSeaNormal(point), v, t_x, t_y, n, sigma, sun),
+            sky_array_weight);
+#endif
+  sea += fresnel * sky;
 #endif  // SKY_SHRM
 #endif
 #ifdef SEA_TERM

@@ -18,6 +18,7 @@
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
+#include "ocean/sky_array_reflection.glsl"
 
 layout(location = 0) out vec4 radiance;
 
@@ -35,15 +36,6 @@ uniform vec3 environment_sky_irradiance;
 // reversed-Z with an infinite far plane, as the projected grid's).
 const float OCEAN_NEAR_PLANE = 0.01;
 
-// A unit vector perpendicular to the unit vector n, as close to `preferred` as it can be: the
-// component of `preferred` in the plane, or (where `preferred` is along n) one of `fallback`.
-vec3 TangentToward(vec3 n, vec3 preferred, vec3 fallback) {
-  vec3 t = preferred - dot(preferred, n) * n;
-  if (dot(t, t) < 1e-8) t = fallback - dot(fallback, n) * n;
-  if (dot(t, t) < 1e-8) t = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) - n.x * n : vec3(0.0, 1.0, 0.0) - n.y * n;
-  return normalize(t);
-}
-
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
   const float distance = FrameSeaDistance(ray);
@@ -54,7 +46,7 @@ void main() {
   const vec3 v = -ray;
 
   // Algorithm 5.1's tangent frame: the wind along t_x.
-  const vec3 t_x = TangentToward(n, vec3(downwind, 0.0), sun);
+  const vec3 t_x = OceanTangentToward(n, vec3(downwind, 0.0), sun);
   const vec3 t_y = cross(n, t_x);
   const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
 
@@ -78,17 +70,8 @@ void main() {
                                               fresnel_r);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
-  // The sky map of the local sun zenith, in the frame whose north is the sun's azimuth at the
-  // point (the array's layers have the sun at azimuth 0): eq. 27's fetch, as ocean_lighting.frag.
-  const vec3 map_north = TangentToward(n, sun, t_x);
-  const vec3 map_east = cross(map_north, n);
-  const mat3 to_map = transpose(mat3(map_east, map_north, n));
-  vec2 u0, du_x, du_y;
-  OceanSkyMapGradients(to_map * v, to_map * t_x, to_map * t_y, vec3(0.0, 0.0, 1.0), u0, du_x,
-                       du_y);
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
-  sea += fresnel * SkyMapArrayRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y,
-                                           SkyMapArrayLayer(dot(n, sun)));
+  sea += fresnel * OceanSkyArrayReflection(n, v, t_x, t_y, n, sigma, sun);
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);

@@ -1,7 +1,10 @@
 // The paper's performance setting (Bruneton et al. 2010, sec. 7.3): 1024x768, 60 waves from
 // 2 cm to 30 m, 8x8-pixel grid cells, the camera looking at the horizon, at heights of 4 m,
 // 1,000 m and 8,000 m. Reports the frame and its split into positions + normals + variances
-// (ocean.geometry) and lighting (ocean.lighting), with the resolved-wave count. Timed, never
+// (ocean.geometry) and lighting (ocean.lighting), with the resolved-wave count. PlanetFrame adds
+// the planet's views (issue 5, point 7): both sides of the switch to the view from space (19,990
+// and 20,010 m) and orbits of 400 km and 36,000 km, looking 30 degrees down, whose ocean is one
+// full-screen pass (ocean.space) instead of the grid's two. Timed, never
 // asserted (DESIGN section 6). Run: build/tests/ocean_bench [--benchmark_repetitions=N]
 // (THALASSA_BACKEND=osmesa picks OSMesa; the default is the headless default).
 #include <benchmark/benchmark.h>
@@ -46,6 +49,29 @@ void OceanFrame(benchmark::State& state) {
 }
 
 BENCHMARK(OceanFrame)->Arg(4)->Arg(1000)->Arg(8000)->Unit(benchmark::kMillisecond)->Iterations(3);
+
+void PlanetFrame(benchmark::State& state) {
+  thalassa::SceneBuilder builder;
+  builder.set("image.width=1024");
+  builder.set("image.height=768");
+  builder.set("camera.height=" + std::to_string(state.range(0)));
+  builder.set("camera.pitch=" + std::string(state.range(0) > 1000000 ? "-90" : "-30"));
+  builder.set("camera.fov_y=" + std::string(state.range(0) > 1000000 ? "25" : "45"));
+  thalassa::Renderer renderer(context(), builder.build());
+  for (auto _ : state) renderer.render();
+  const thalassa::RenderStats stats = renderer.stats();
+  state.counters["frame_ms"] = stats.frame_ms;
+  for (const auto& [name, ms] : stats.passes) state.counters[name + "_ms"] = ms;
+  state.SetLabel(stats.mode + ", " + stats.renderer + ", " + stats.timing);
+}
+
+BENCHMARK(PlanetFrame)
+    ->Arg(19990)
+    ->Arg(20010)
+    ->Arg(400000)
+    ->Arg(36000000)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3);
 
 }  // namespace
 
