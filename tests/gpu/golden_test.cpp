@@ -37,6 +37,11 @@ const GoldenCase kCases[] = {
     {"low_sun_rolled", R"({"image": {"width": 160, "height": 120}, "sun": {"zenith": 85},
                           "camera": {"roll": 20, "heading": 170, "pitch": 2}})"},
     {"sun_set", R"({"image": {"width": 160, "height": 120}, "sun": {"zenith": 95}})"},
+    {"from_space", R"({"image": {"width": 160, "height": 120},
+                      "camera": {"height": 400000, "pitch": -30}, "sun": {"zenith": 40}})"},
+    {"geostationary", R"({"image": {"width": 120, "height": 120},
+                         "camera": {"height": 36000000, "pitch": -90, "fov_y": 20, "lat": 0},
+                         "sun": {"zenith": 30, "azimuth": 100}})"},
 };
 
 // gtest prints the parameter by this (instead of its bytes).
