@@ -113,7 +113,7 @@ class OceanNode final : public gl::Node {
     auto location = [](GLuint program, const char* name) {
       return glGetUniformLocation(program, name);
     };
-    const glm::dvec2 downwind = nadir_downwind(inputs, waves_);
+    const glm::dvec2 downwind = chart_direction_in_frame(inputs.wave_axes, waves_.downwind);
     glProgramUniform2f(lighting, location(lighting, "downwind"), float(downwind.x),
                        float(downwind.y));
     glProgramUniform1f(lighting, location(lighting, "fresnel_r"),
@@ -189,18 +189,13 @@ class OceanNode final : public gl::Node {
     packed.reserve(waves_.waves.size() * 8);
     for (std::size_t i = 0; i < waves_.waves.size(); ++i) {
       const Wave& w = waves_.waves[i];
-      const glm::dvec2 direction = glm::normalize(glm::transpose(inputs.wave_axes) * w.direction);
-      for (double value : {direction.x, direction.y, w.wavenumber, w.amplitude, phases[i],
-                           w.wavelength, 0.0, 0.0})
+      const glm::dvec2 direction = chart_direction_in_frame(inputs.wave_axes, w.direction);
+      for (double value :
+           {direction.x, direction.y, w.wavenumber, w.amplitude, phases[i], w.wavelength, 0.0, 0.0})
         packed.push_back(static_cast<float>(value));
     }
     glNamedBufferSubData(wave_buffer_.get(), 0,
                          static_cast<GLsizeiptr>(packed.size() * sizeof(float)), packed.data());
-  }
-
-  // The wind's direction in the nadir frame (unit).
-  static glm::dvec2 nadir_downwind(const gl::FrameInputs& inputs, const WaveSet& waves) {
-    return glm::normalize(glm::transpose(inputs.wave_axes) * waves.downwind);
   }
 
   // The G-buffer between the two passes: the unit normal (+ coverage) and the unresolved slope

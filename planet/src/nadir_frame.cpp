@@ -7,8 +7,8 @@ namespace thalassa {
 
 Geodetic nearest_wave_anchor(double lat_deg, double lon_deg) {
   Geodetic anchor;
-  anchor.lat = std::clamp(std::round(lat_deg / kWaveAnchorSpacingDeg) * kWaveAnchorSpacingDeg,
-                          -90.0, 90.0);
+  anchor.lat =
+      std::clamp(std::round(lat_deg / kWaveAnchorSpacingDeg) * kWaveAnchorSpacingDeg, -90.0, 90.0);
   double lon = std::round(lon_deg / kWaveAnchorSpacingDeg) * kWaveAnchorSpacingDeg;
   lon = std::remainder(lon, 360.0);  // [-180, 180]
   anchor.lon = lon == -180.0 ? 180.0 : lon;
@@ -39,8 +39,7 @@ NadirFrame make_nadir_frame(const Planet& planet, const CameraSettings& camera,
   frame.sea_surface = planet_sea_surface(planet, camera.lat, camera.lon);
   frame.wave_anchor = anchor ? Geodetic{anchor->lat, anchor->lon, 0.0}
                              : nearest_wave_anchor(camera.lat, camera.lon);
-  const LocalFrame chart =
-      planet.local_frame(frame.wave_anchor.lat, frame.wave_anchor.lon, 0.0);
+  const LocalFrame chart = planet.local_frame(frame.wave_anchor.lat, frame.wave_anchor.lon, 0.0);
   const glm::dvec3 origin = chart.offset(camera.lat, camera.lon, 0.0);
   frame.wave_origin = {origin.x, origin.y};
   const glm::dvec3 east = chart.direction_to_enu(frame.enu.east);

@@ -7,6 +7,7 @@
 #include <map>
 
 #include "sky_provider_factory.hpp"
+#include "space_ocean_node.hpp"
 #include "thalassa/atmosphere/gl/sky_node.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/gpu_timer.hpp"
@@ -16,7 +17,6 @@
 #include "thalassa/engine/gl/state_guard.hpp"
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/ocean/gl/ocean_node.hpp"
-#include "space_ocean_node.hpp"
 #include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/camera_frame.hpp"
 #include "thalassa/planet/nadir_frame.hpp"
@@ -59,11 +59,11 @@ gl::FrameInputs frame_inputs(const Scene& scene, const NadirFrame& frame) {
   return inputs;
 }
 
-// Which of the sky and the sea the image sees: the view rays through the image's border and
-// centre, met with the sea at rest (the planet's quadric). The region of rays that meet a convex
-// surface is convex in the image plane, so if the sea is seen at all, it is at the border or
-// inside it around its centre ... or, from far away, a small disc anywhere: also try the image
-// point of the nadir. A few hundred rays in double cost microseconds.
+// Which of the sky and the sea the image sees: view rays met with the sea at rest (the planet's
+// quadric). The rays that meet a convex surface form a convex region of the image plane around
+// the nadir's image point, so the sea is seen iff that region crosses the image's border (sampled
+// densely along it) or lies inside it (the nadir's image point and the centre are tried). A few
+// hundred rays in double cost microseconds.
 void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& sea_visible) {
   const CameraBasis basis{inputs.camera_right, inputs.camera_up, inputs.camera_forward};
   const double aspect = double(inputs.width) / double(inputs.height);

@@ -36,26 +36,23 @@ class SpaceOceanNode final : public gl::Node {
       defines["SKY_MAP_ARRAY"] = "1";
       provider.sky_map_array(context.shaders, &context.timer);
     }
-    const GLuint program = context.shaders.program(
-        {.vertex = "engine/fullscreen.vert", .fragment = "planet/ocean_space.frag",
-         .defines = defines});
+    const GLuint program = context.shaders.program({.vertex = "engine/fullscreen.vert",
+                                                    .fragment = "planet/ocean_space.frag",
+                                                    .defines = defines});
     auto location = [&](const char* name) { return glGetUniformLocation(program, name); };
     // The wind's direction and the slope variance of every wave (eq. 4, w_r = 1), in the nadir
     // frame (the waves' chart turned by wave_axes, planet/nadir_frame.hpp).
-    const glm::dvec2 downwind =
-        glm::normalize(glm::transpose(inputs.wave_axes) * waves_.downwind);
+    const glm::dvec2 downwind = ocean::chart_direction_in_frame(inputs.wave_axes, waves_.downwind);
     const ocean::SlopeVariance total = waves_.tail_variance.front();
-    const double sun_solid_angle =
-        2.0 * kPi * (1.0 - std::cos(provider.sun_angular_radius()));
+    const double sun_solid_angle = 2.0 * kPi * (1.0 - std::cos(provider.sun_angular_radius()));
     const glm::dvec3 sun_disc = provider.sun_disc_radiance() * sun_solid_angle;
     glProgramUniform2f(program, location("downwind"), float(downwind.x), float(downwind.y));
     glProgramUniform2f(program, location("slope_variance"), float(total.along),
                        float(total.across));
     glProgramUniform1f(program, location("fresnel_r"), float(options_.settings.fresnel_r));
-    glProgramUniform3f(program, location("deep_reflectance"),
-                       float(options_.settings.deep_reflectance_r),
-                       float(options_.settings.deep_reflectance_g),
-                       float(options_.settings.deep_reflectance_b));
+    glProgramUniform3f(
+        program, location("deep_reflectance"), float(options_.settings.deep_reflectance_r),
+        float(options_.settings.deep_reflectance_g), float(options_.settings.deep_reflectance_b));
     glProgramUniform3f(program, location("sun_disc_irradiance"), float(sun_disc.x),
                        float(sun_disc.y), float(sun_disc.z));
     glProgramUniform1f(program, location("atmosphere_radius"), float(provider.planet_radius()));

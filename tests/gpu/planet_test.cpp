@@ -17,23 +17,37 @@ namespace {
 
 double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
-// Whether pixel (x, y) (row 0 at the top) of `scene`'s image sees the sea at rest, with a margin
-// of `margin` pixels from the horizon (the two modes may draw the horizon's own pixels
-// differently: the grid's crests against the smooth surface).
-bool sees_sea(const Scene& scene, int x, int y, double margin) {
-  const CameraBasis basis = camera_basis(scene.camera.heading, scene.camera.pitch,
-                                         scene.camera.roll);
-  const NadirFrame frame = make_nadir_frame(Planet(scene.planet), scene.camera);
-  const double tan_half = std::tan(0.5 * scene.camera.fov_y * M_PI / 180.0);
-  const double aspect = double(scene.image.width) / scene.image.height;
-  for (double dy : {-margin, 0.0, margin}) {
-    const double u = 2.0 * (x + 0.5) / scene.image.width - 1.0;
-    const double v = 1.0 - 2.0 * (y + 0.5 + dy) / scene.image.height;
-    const glm::dvec3 ray = glm::normalize(view_ray(basis, tan_half, aspect, u, v));
-    if (!ocean::sea_surface_distance(frame.sea_surface, scene.camera.height, ray)) return false;
+// Which pixels of `scene`'s image see the sea at rest, with a margin of `margin` pixels from the
+// horizon (the two modes may draw the horizon's own pixels differently: the grid's crests
+// against the smooth surface).
+class SeaMask {
+ public:
+  SeaMask(const Scene& scene, double margin)
+      : scene_(scene),
+        basis_(camera_basis(scene.camera.heading, scene.camera.pitch, scene.camera.roll)),
+        surface_(make_nadir_frame(Planet(scene.planet), scene.camera).sea_surface),
+        tan_half_(std::tan(0.5 * scene.camera.fov_y * M_PI / 180.0)),
+        margin_(margin) {}
+
+  // Pixel (x, y), row 0 at the top.
+  bool sees_sea(int x, int y) const {
+    const double aspect = double(scene_.image.width) / scene_.image.height;
+    for (double dy : {-margin_, 0.0, margin_}) {
+      const double u = 2.0 * (x + 0.5) / scene_.image.width - 1.0;
+      const double v = 1.0 - 2.0 * (y + 0.5 + dy) / scene_.image.height;
+      const glm::dvec3 ray = glm::normalize(view_ray(basis_, tan_half_, aspect, u, v));
+      if (!ocean::sea_surface_distance(surface_, scene_.camera.height, ray)) return false;
+    }
+    return true;
   }
-  return true;
-}
+
+ private:
+  Scene scene_;
+  CameraBasis basis_;
+  ocean::SeaSurface surface_;
+  double tan_half_;
+  double margin_;
+};
 
 Image render(GlContext& context, const Scene& scene, RenderStats* stats = nullptr) {
   Renderer renderer(context, scene);
@@ -75,9 +89,10 @@ TEST(PlanetSwitch, SameViewOnBothSidesOfTwentyKilometresDiffersByUnderOnePercent
     }
     ASSERT_EQ(stats[0].mode, "surface");
     ASSERT_EQ(stats[1].mode, "space");
+    const SeaMask below(scenes[0], 1.5), above(scenes[1], 1.5);
     for (int y = 0; y < images[0].height; ++y)
       for (int x = 0; x < images[0].width; ++x) {
-        if (!sees_sea(scenes[0], x, y, 1.5) || !sees_sea(scenes[1], x, y, 1.5)) continue;
+        if (!below.sees_sea(x, y) || !above.sees_sea(x, y)) continue;
         const double a = luminance(images[0].pixel(x, y));
         const double b = luminance(images[1].pixel(x, y));
         ASSERT_TRUE(std::isfinite(a) && std::isfinite(b));
@@ -89,9 +104,10 @@ TEST(PlanetSwitch, SameViewOnBothSidesOfTwentyKilometresDiffersByUnderOnePercent
     ASSERT_GT(pixels, 100) << view.name;
     const double mean_change = std::abs(sums[1] / sums[0] - 1.0);
     const double pixel_change = difference / sums[0];
-    std::printf("%-32s %5d sea pixels: mean sea luminance changes by %.3g%%, per-pixel mean "
-                "|difference| %.3g%% of the mean\n",
-                view.name, pixels, 100.0 * mean_change, 100.0 * pixel_change);
+    std::printf(
+        "%-32s %5d sea pixels: mean sea luminance changes by %.3g%%, per-pixel mean "
+        "|difference| %.3g%% of the mean\n",
+        view.name, pixels, 100.0 * mean_change, 100.0 * pixel_change);
     EXPECT_LT(mean_change, 0.01) << view.name;
     EXPECT_LT(pixel_change, 0.01) << view.name;
   }
@@ -133,9 +149,10 @@ TEST(PlanetPrecision, AMillimetreMovesTheImageSmoothlyAnywhere) {
       return change / sum;
     };
     const double one = moved(1e-3), two = moved(2e-3), half_metre = moved(0.5);
-    std::printf("latitude %5.1f, longitude 180: relative image change %.3g for 1 mm, %.3g for "
-                "2 mm, %.3g for 0.5 m\n",
-                lat, one, two, half_metre);
+    std::printf(
+        "latitude %5.1f, longitude 180: relative image change %.3g for 1 mm, %.3g for "
+        "2 mm, %.3g for 0.5 m\n",
+        lat, one, two, half_metre);
     EXPECT_GT(one, 0.0) << lat;  // the image does move
     EXPECT_GT(one / two, 0.3) << lat;
     EXPECT_LT(one / two, 0.7) << lat;

@@ -236,4 +236,12 @@ SlopeVariance unresolved_slope_variance(const WaveSet& wave_set, double pixel_si
 double wrapped_phase(const Wave& wave, double time, glm::dvec2 origin);
 std::vector<double> wrapped_phases(const WaveSet& wave_set, double time, glm::dvec2 origin);
 
+// A unit direction of the waves' chart (the frame the wave set is defined in) as seen in a
+// renderer's frame whose east and north unit vectors, in chart coordinates, are the columns of
+// `frame_axes` (planet/nadir_frame.hpp, wave_axes): the wave vector k turns as k^T axes, i.e.
+// axes^T k, renormalised (the axes are a rotation to ~1e-5).
+inline glm::dvec2 chart_direction_in_frame(const glm::dmat2& frame_axes, glm::dvec2 direction) {
+  return glm::normalize(glm::transpose(frame_axes) * direction);
+}
+
 }  // namespace thalassa::ocean
