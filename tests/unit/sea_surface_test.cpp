@@ -15,6 +15,7 @@
 
 #include "sea_surfaces.hpp"
 #include "thalassa/ocean/sea_surface.hpp"
+#include "thalassa/planet/nadir_frame.hpp"
 
 namespace thalassa::ocean {
 namespace {
@@ -22,6 +23,8 @@ namespace {
 using testing::ellipsoid_like_sea;
 using testing::kEarthRadius;
 using testing::wgs84_frame;
+using thalassa::Planet;
+using thalassa::planet_sea_surface;
 
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kDegree = kPi / 180.0;
@@ -225,6 +228,12 @@ TEST(SeaSurface, Wgs84CurvatureIsTheEllipsoid) {
     EXPECT_NEAR(frame.surface.curvature[0][0] * double(n), 1.0, 1e-15);
     EXPECT_NEAR(frame.surface.curvature[1][1] * double(m), 1.0, 1e-15);
     EXPECT_EQ(frame.surface.curvature[1][0], 0.0);
+    // The planet module's C (through GeographicLib's ENU frame) is the same.
+    const SeaSurface planet = planet_sea_surface(Planet::wgs84(), lat, 0.0);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j)
+        EXPECT_NEAR(planet.curvature[i][j], frame.surface.curvature[i][j], 1e-22)
+            << lat << " " << i << " " << j;
     // Points of the quadric (z the sag) are points of the ellipsoid p^T A p = 1 in ECEF.
     for (double x : {-6e5, -1e3, 0.0, 2.5e4, 5e5})
       for (double y : {-4e5, -7.0, 3e3, 6e5}) {
