@@ -220,7 +220,9 @@ class OceanNode final : public gl::Node {
   }
 
   // The projected grid (CPU, double), uploaded as float rest positions relative to the camera's
-  // nadir (small numbers near the camera, where precision matters) and drawn with depth.
+  // nadir (small numbers near the camera, where precision matters) and drawn with depth. The
+  // node's grid camera still has the flat sea (GridCamera's default), so its rest z is 0, and 0
+  // goes up for z; with the frame's quadric passed to make_grid_camera, upload rest z instead.
   void draw_grid(const GridCamera& camera) {
     const ProjectedGrid grid =
         make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
@@ -284,7 +286,8 @@ class OceanNode final : public gl::Node {
 
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
   // corners and centre that see the sea, their footprint the distance between neighbouring
-  // pixels' points on the plane z = 0 (what dFdx gives the shader).
+  // pixels' points on the sea at rest (the camera's surface, flat here; what dFdx gives the
+  // shader).
   int count_resolved(const GridCamera& camera, double scale) const {
     if (waves_.waves.empty() || !(scale > 0.0)) return 0;
     // Image points of pixel (px, py) (pixels, y up as in the image plane).
@@ -294,7 +297,7 @@ class OceanNode final : public gl::Node {
     double smallest = INFINITY;
     for (double px : {0.5, 0.5 * camera.width, camera.width - 1.5})
       for (double py : {0.5, 0.5 * camera.height_px, camera.height_px - 1.5}) {
-        glm::dvec2 p, px1, py1;
+        glm::dvec3 p, px1, py1;
         if (!sea_point(camera, image(px, py), p) || !sea_point(camera, image(px + 1.0, py), px1) ||
             !sea_point(camera, image(px, py + 1.0), py1))
           continue;

@@ -1,12 +1,156 @@
+// The projected grid on the sea at rest: see ocean/include/thalassa/ocean/projected_grid.hpp for
+// the frames, units and the reasoning.
 #include "thalassa/ocean/projected_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace thalassa::ocean {
+namespace {
+
+// Newton steps onto the kept rays' boundary stop once the clearance is within this fraction of
+// |b| + sqrt(...) (the two terms it is the difference of) of 0, four orders inside the margins,
+// or within its rounding, kRounding |beta| |ray| (b is a sum of terms up to that size, which
+// cancel to ~1e-6 of it near the flat sea's horizon): the moved ray still meets the sea by
+// nearly all of the margins (the curved sea's, ~kHorizonMargin |b| / 2, is about 6e-14 |ray| at
+// 1 cm up, 20 times kRounding |beta| |ray|; the flat sea's 1e-6 |ray|).
+constexpr double kNewtonTolerance = 1e-13;
+constexpr double kRounding = 8.0 * 2.220446049250313e-16;
+// Newton converges in 1 step on the flat sea (its clearance is linear in the image point), in at
+// most 7 (2.4 on average) on the curved seas of the tests; see make_projected_grid for a vertex
+// that has not converged after these.
+constexpr int kMaxNewtonSteps = 32;
+
+// The cone of kept rays (grid_horizon_clearance) for one camera: clearance(r) = -b(r) -
+// sqrt(q(r)), b(r) = beta . r, q(r) = (2 c r^T C r + mu (r . forward)^2) / (1 - kHorizonMargin)
+// (2 c r^T C r is 4ac).
+struct KeptCone {
+  glm::dmat3 curvature{0.0};  // C, 1/m
+  glm::dvec3 beta{0.0};       // z-hat + h C z-hat: b = beta . r
+  double beta_length = 0.0;
+  glm::dvec3 forward{0.0};
+  double c = 0.0;   // m: the quadratic's c, h (1 + h C_zz / 2)
+  double mu = 0.0;  // kHorizonDepression^2 on the flat sea, 0 on a curved one
+};
+
+KeptCone kept_cone(const GridCamera& camera) {
+  const glm::dmat3& m = camera.surface.curvature;
+  const double h = camera.height;
+  // Curved: C positive definite in the horizontal, so every azimuth has a horizon at a finite
+  // distance and the relative margin alone keeps the moved rays' points finite.
+  const bool curved = m[0][0] > 0.0 && m[0][0] * m[1][1] - m[1][0] * m[1][0] > 0.0;
+  KeptCone cone;
+  cone.curvature = m;
+  cone.beta = glm::dvec3(0.0, 0.0, 1.0) + h * glm::dvec3(m[2]);
+  cone.beta_length = glm::length(cone.beta);
+  cone.forward = camera.forward;
+  cone.c = h * (1.0 + 0.5 * h * m[2][2]);
+  cone.mu = curved ? 0.0 : kHorizonDepression * kHorizonDepression;
+  return cone;
+}
+
+struct Clearance {
+  double value = 0.0;        // clearance(r), unnormalised
+  double tolerance = 0.0;    // |value| within this: on the boundary (see kNewtonTolerance)
+  glm::dvec3 gradient{0.0};  // d clearance / d r
+};
+
+Clearance clearance(const KeptCone& k, const glm::dvec3& r) {
+  const glm::dvec3 cr = k.curvature * r;
+  const double along = glm::dot(r, k.forward);
+  const double b = glm::dot(k.beta, r);
+  const double q =
+      std::max(2.0 * k.c * glm::dot(r, cr) + k.mu * along * along, 0.0) / (1.0 - kHorizonMargin);
+  const double root = std::sqrt(q);
+  Clearance result;
+  result.value = -b - root;
+  // |r| bounded by its L1 norm.
+  const double r_bound = std::abs(r.x) + std::abs(r.y) + std::abs(r.z);
+  result.tolerance = kNewtonTolerance * (std::abs(b) + root) + kRounding * k.beta_length * r_bound;
+  result.gradient = -k.beta;
+  if (root > 0.0)
+    result.gradient -=
+        (4.0 * k.c * cr + 2.0 * k.mu * along * k.forward) / (2.0 * (1.0 - kHorizonMargin) * root);
+  return result;
+}
+
+// Whether the grid keeps the ray: clearance >= 0, that is b < 0 and b^2 >= q (no square root).
+bool kept_ray(const KeptCone& k, const glm::dvec3& r) {
+  const double b = glm::dot(k.beta, r);
+  if (!(b < 0.0)) return false;
+  const double along = glm::dot(r, k.forward);
+  const double q =
+      (2.0 * k.c * glm::dot(r, k.curvature * r) + k.mu * along * along) / (1.0 - kHorizonMargin);
+  return b * b >= q;
+}
+
+// Whether the ray (any length) from the camera meets the sea at rest: b < 0 and b^2 >= 4ac.
+bool meets_sea(const GridCamera& camera, const glm::dvec3& ray) {
+  const glm::dvec3 q = sea_surface_ray_coefficients(camera.surface, camera.height, ray);
+  return q.y < 0.0 && q.y * q.y - 4.0 * q.x * q.z >= 0.0;
+}
+
+// Whether some ray through the image segment from p0 to p1 meets the sea. The rays d0 + s e,
+// s in [0, 1], span a plane; those meeting the convex sea form an interval of s whose ends graze
+// it, roots of g(s) = b(s)^2 - 4 a(s) c, a quadratic (b is linear in the ray, a quadratic). An
+// interval strictly inside (0, 1) has g >= 0 between its ends, so g is concave and its vertex
+// -g1 / (2 g2), the ends' midpoint, meets the sea: the ends and that vertex decide, exactly.
+bool segment_meets_sea(const GridCamera& camera, glm::dvec2 p0, glm::dvec2 p1) {
+  const glm::dvec3 d0 = grid_ray(camera, p0);
+  const glm::dvec3 e = grid_ray(camera, p1) - d0;
+  if (meets_sea(camera, d0) || meets_sea(camera, d0 + e)) return true;
+  const glm::dmat3& m = camera.surface.curvature;
+  const double h = camera.height;
+  const double c = h * (1.0 + 0.5 * h * m[2][2]);  // the quadratic's c, the same for all rays
+  const glm::dvec3 m_z = m[2];                     // C z-hat
+  const double b0 = d0.z + h * glm::dot(m_z, d0);
+  const double b1 = e.z + h * glm::dot(m_z, e);
+  const double g2 = b1 * b1 - 2.0 * c * glm::dot(e, m * e);
+  const double g1 = 2.0 * b0 * b1 - 4.0 * c * glm::dot(d0, m * e);
+  if (!(g2 < 0.0)) return false;
+  const double s = std::clamp(-g1 / (2.0 * g2), 0.0, 1.0);
+  return meets_sea(camera, d0 + s * e);
+}
+
+// The image point (u, v) of a direction in front of the camera.
+glm::dvec2 image_point(const GridCamera& c, const glm::dvec3& direction) {
+  const double along = glm::dot(direction, c.forward);
+  return {glm::dot(direction, c.right) / (along * c.tan_half_fov_y * c.aspect),
+          glm::dot(direction, c.up) / (along * c.tan_half_fov_y)};
+}
+
+// Whether any ray through the image rectangle [lo, hi] meets the sea. The image region that
+// does is convex: it contains a corner, crosses an edge, or lies strictly inside, where it
+// contains the nadir's image point (the nadir always meets a convex sea from above).
+bool image_sees_sea(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi) {
+  const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  for (int k = 0; k < 4; ++k)
+    if (segment_meets_sea(camera, corners[k], corners[(k + 1) % 4])) return true;
+  const glm::dvec3 nadir(0.0, 0.0, -1.0);
+  if (!(glm::dot(nadir, camera.forward) > 0.0)) return false;
+  const glm::dvec2 p = image_point(camera, nadir);
+  return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && meets_sea(camera, nadir);
+}
+
+// The point (m, nadir ENU) at distance t along `ray` from the camera, its z the surface's sag
+// at its x, y (the ray's own z, h + t d_z, would carry the rounding of h, 1e-16 h, into a sag
+// that can be far smaller).
+glm::dvec3 surface_point(const GridCamera& camera, const glm::dvec3& ray, double t) {
+  const glm::dvec2 xy(t * ray.x, t * ray.y);
+  return {xy, sea_surface_sag(camera.surface, xy)};
+}
+
+}  // namespace
+
+double grid_horizon_clearance(const GridCamera& camera, const glm::dvec3& ray) {
+  const double length = glm::length(ray);
+  return length > 0.0 ? clearance(kept_cone(camera), ray).value / length : 0.0;
+}
+
 GridCamera make_grid_camera(const glm::dvec3& right, const glm::dvec3& up,
                             const glm::dvec3& forward, double tan_half_fov_y, double height,
-                            int width_px, int height_px) {
+                            int width_px, int height_px, const SeaSurface& surface) {
   GridCamera camera;
   camera.right = right;
   camera.up = up;
@@ -16,6 +160,7 @@ GridCamera make_grid_camera(const glm::dvec3& right, const glm::dvec3& up,
   camera.height = height;
   camera.width = width_px;
   camera.height_px = height_px;
+  camera.surface = surface;
   return camera;
 }
 
@@ -24,10 +169,11 @@ glm::dvec3 grid_ray(const GridCamera& c, glm::dvec2 image) {
          (image.y * c.tan_half_fov_y) * c.up;
 }
 
-bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec2& point) {
-  const glm::dvec3 ray = grid_ray(camera, image);
-  if (ray.z >= 0.0 || !(camera.height > 0.0)) return false;
-  point = glm::dvec2(ray.x, ray.y) * (camera.height / -ray.z);
+bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec3& point) {
+  const glm::dvec3 ray = glm::normalize(grid_ray(camera, image));
+  const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, ray);
+  if (!t) return false;
+  point = surface_point(camera, ray, *t);
   return true;
 }
 
@@ -35,49 +181,93 @@ ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int 
   ProjectedGrid grid;
   if (!(camera.height > 0.0) || camera.width < 1 || camera.height_px < 1 || !(cell_px > 0.0))
     return grid;
-  // ray.z(u, v) = z0 + gu u + gv v: the horizon is the line ray.z = 0 in the image plane.
-  const double z0 = camera.forward.z;
-  const glm::dvec2 gradient(camera.tan_half_fov_y * camera.aspect * camera.right.z,
-                            camera.tan_half_fov_y * camera.up.z);
   const int margin = std::max(margin_cells, 0);
   const int cells_x = static_cast<int>(std::ceil(camera.width / cell_px)) + 2 * margin;
   const int cells_y = static_cast<int>(std::ceil(camera.height_px / cell_px)) + 2 * margin;
   // Image units per cell: 2 / width per pixel horizontally, 2 / height vertically.
   const glm::dvec2 step(2.0 * cell_px / camera.width, 2.0 * cell_px / camera.height_px);
   const glm::dvec2 origin = glm::dvec2(-1.0, -1.0) - double(margin) * step;
+  if (!image_sees_sea(camera, origin, origin + glm::dvec2(cells_x, cells_y) * step)) return grid;
 
-  // Is any of the (extended) image below the horizon? ray.z is linear: test the corners.
-  bool sees_sea = false;
-  for (double u : {origin.x, origin.x + cells_x * step.x})
-    for (double v : {origin.y, origin.y + cells_y * step.y})
-      sees_sea = sees_sea || z0 + gradient.x * u + gradient.y * v < -kHorizonDepression;
-  if (!sees_sea) return grid;
-
+  const KeptCone cone = kept_cone(camera);
+  // Image units per unit of the image plane at unit distance (isotropic, as square pixels):
+  // the Newton steps below follow the gradient in that plane, so the moves are perpendicular to
+  // the horizon as the pixels see it.
+  const glm::dvec2 plane_to_image(1.0 / (camera.tan_half_fov_y * camera.aspect),
+                                  1.0 / camera.tan_half_fov_y);
   grid.columns = cells_x + 1;
   grid.rows = cells_y + 1;
   const std::size_t count = static_cast<std::size_t>(grid.columns) * grid.rows;
   grid.rest.resize(count);
   grid.cell_size.resize(count);
   grid.image.resize(count);
-  const double gradient2 = glm::dot(gradient, gradient);
-  std::vector<bool> moved(count, false);
+  // Onto the kept rays' boundary: Newton steps along the clearance's gradient in the image
+  // plane. The clearance is concave, so a step lands where it is <= 0 (on the tangent plane's
+  // zero, above the function): from the sky's side the steps approach the boundary without
+  // crossing into the sea; from the sea's side the first step lands on the sky's. Every point
+  // visited is in the image plane.
+  auto onto_horizon = [&](glm::dvec2 image) {
+    Clearance kept = clearance(cone, grid_ray(camera, image));
+    for (int n = 0; n < kMaxNewtonSteps && std::abs(kept.value) > kept.tolerance; ++n) {
+      // d clearance / d (plane point): ray = forward + x right + y up.
+      const glm::dvec2 gradient(glm::dot(kept.gradient, camera.right),
+                                glm::dot(kept.gradient, camera.up));
+      const double gradient2 = glm::dot(gradient, gradient);
+      if (!(gradient2 > 0.0)) break;
+      image -= (kept.value / gradient2) * gradient * plane_to_image;
+      kept = clearance(cone, grid_ray(camera, image));
+    }
+    return image;
+  };
+  std::vector<char> moved(count, 0);
   for (int j = 0; j < grid.rows; ++j)
     for (int i = 0; i < grid.columns; ++i) {
-      glm::dvec2 image = origin + glm::dvec2(i, j) * step;
-      const double z = z0 + glm::dot(gradient, image);
-      if (z > -kHorizonDepression && gradient2 > 0.0) {
-        // Onto the line ray.z = -kHorizonDepression, along the gradient (the shortest move).
-        image -= ((z + kHorizonDepression) / gradient2) * gradient;
-        ++grid.moved_to_horizon;
-        moved[static_cast<std::size_t>(j) * grid.columns + i] = true;
-      }
-      const glm::dvec3 ray = grid_ray(camera, image);
-      // ray.z <= -kHorizonDepression < 0 here; its forward component is 1 (in front).
-      const double t = camera.height / std::max(-ray.z, kHorizonDepression);
       const std::size_t k = static_cast<std::size_t>(j) * grid.columns + i;
-      grid.image[k] = image;
-      grid.rest[k] = glm::dvec2(ray.x, ray.y) * t;
+      grid.image[k] = origin + glm::dvec2(i, j) * step;
+      if (!kept_ray(cone, grid_ray(camera, grid.image[k]))) {
+        grid.image[k] = onto_horizon(grid.image[k]);
+        moved[k] = 1;
+      }
     }
+  // On a curved horizon the chord between two moved vertices cuts off a sliver of the sea (its
+  // sagitta, kappa l^2 / 8 for a chord l on a conic of curvature kappa). A kept vertex inside
+  // that sliver lies beyond the chord, and the triangle of the three is folded over: move such
+  // kept vertices onto the horizon too (by at most the sagitta), until no triangle with a kept
+  // vertex is folded; each pass moves at least one vertex more.
+  auto twice_area = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const glm::dvec2 pa = grid.image[a], pb = grid.image[b], pc = grid.image[c];
+    return (pb.x - pa.x) * (pc.y - pa.y) - (pb.y - pa.y) * (pc.x - pa.x);
+  };
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (int j = 0; j < cells_y; ++j)
+      for (int i = 0; i < cells_x; ++i) {
+        const std::uint32_t a = j * grid.columns + i, b = a + 1, c = a + grid.columns, d = c + 1;
+        const std::uint32_t triangles[2][3] = {{a, b, d}, {a, d, c}};
+        for (const auto& t : triangles) {
+          const int moved_corners = moved[t[0]] + moved[t[1]] + moved[t[2]];
+          if (moved_corners == 0 || moved_corners == 3 || twice_area(t[0], t[1], t[2]) > 0.0)
+            continue;
+          for (std::uint32_t v : t)
+            if (!moved[v]) {
+              grid.image[v] = onto_horizon(grid.image[v]);
+              moved[v] = 1;
+            }
+          changed = true;
+        }
+      }
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    // Kept rays, and moved ones to within kNewtonTolerance, meet the sea by the margins. One
+    // that still misses after kMaxNewtonSteps means that no ray of the image plane clears them
+    // (the image sees the sea only within the margins, at the image plane's infinity looking
+    // up): nothing to draw.
+    const glm::dvec3 ray = glm::normalize(grid_ray(camera, grid.image[k]));
+    const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, ray);
+    if (!t) return ProjectedGrid{};
+    grid.rest[k] = surface_point(camera, ray, *t);
+    if (moved[k]) ++grid.moved_to_horizon;
+  }
   for (int j = 0; j < grid.rows; ++j)
     for (int i = 0; i < grid.columns; ++i) {
       const std::size_t k = static_cast<std::size_t>(j) * grid.columns + i;
@@ -88,15 +278,18 @@ ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int 
                                    glm::length(grid.rest[above] - grid.rest[k]));
       // Vertices moved onto the horizon crowd together along it, so their neighbours say
       // nothing of the footprint, which is unbounded there: take their distance from the nadir
-      // (at least 1e5 times any wave it could hold), so that no wave displaces them. (With a
-      // small cell the shader would evaluate short waves at ~1e6 m, where float arguments of
-      // 1e9 rad make sin() meaningless, NaN on some drivers.)
+      // (on the flat sea at least 1e5 times any wave it could hold; on the Earth's sphere 7 km
+      // at 4 m up, 500 km at 20 km), so that no wave displaces them. (With a small cell the
+      // shader would evaluate short waves far away, where float arguments of 1e9 rad make sin()
+      // meaningless, NaN on some drivers.)
       if (moved[k]) grid.cell_size[k] = std::max(grid.cell_size[k], glm::length(grid.rest[k]));
     }
   grid.indices.reserve(static_cast<std::size_t>(cells_x) * cells_y * 6);
   // A triangle whose three vertices were all moved onto the horizon is degenerate by
-  // construction (they lie on one line of the image): leaving it out keeps rasterisers from
-  // dividing by its zero area (llvmpipe then interpolates NaN).
+  // construction on the flat sea (they lie on one line of the image); on the curved one it is a
+  // sliver between three points of the horizon conic, whose corners need not keep the cell's
+  // order along it. Leaving them out keeps rasterisers from dividing by a zero area (llvmpipe
+  // then interpolates NaN) and the grid from folding over.
   auto add_triangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     if (moved[a] && moved[b] && moved[c]) return;
     grid.indices.insert(grid.indices.end(), {a, b, c});

@@ -4,16 +4,19 @@
 // (ocean.geometry) and lighting (ocean.lighting), with the resolved-wave count. PlanetFrame adds
 // the planet's views (issue 5, point 7): both sides of the switch to the view from space (19,990
 // and 20,010 m) and orbits of 400 km and 36,000 km, looking 30 degrees down, whose ocean is one
-// full-screen pass (ocean.space) instead of the grid's two. Timed, never
-// asserted (DESIGN section 6). Run: build/tests/ocean_bench [--benchmark_repetitions=N]
+// full-screen pass (ocean.space) instead of the grid's two. ProjectedGridCpu times the projected
+// grid alone on the CPU. Timed, never asserted (DESIGN section 6). Run:
+// build/tests/ocean_bench [--benchmark_repetitions=N] [--benchmark_filter=ProjectedGridCpu]
 // (THALASSA_BACKEND=osmesa picks OSMesa; the default is the headless default).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <map>
 #include <memory>
 #include <string>
 
+#include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/thalassa.hpp"
 
 namespace {
@@ -72,6 +75,33 @@ BENCHMARK(PlanetFrame)
     ->Arg(36000000)
     ->Unit(benchmark::kMillisecond)
     ->Iterations(3);
+
+// The projected grid alone (CPU, double; no GL): the same image, cells and view, the node's 2
+// margin cells, on the flat sea (arg 0), the sphere of 6371 km (1) and WGS84 at 45 degrees north
+// (2). Half the grid lies on the sky's side and is moved onto the horizon.
+void ProjectedGridCpu(benchmark::State& state) {
+  const double height = double(state.range(1));
+  const thalassa::CameraBasis b = thalassa::camera_basis(0.0, 0.0, 0.0);
+  const thalassa::ocean::SeaSurface surface =
+      state.range(0) == 0   ? thalassa::ocean::flat_sea_surface()
+      : state.range(0) == 1 ? thalassa::ocean::spherical_sea_surface(6371e3)
+                            : thalassa::planet_sea_surface(thalassa::Planet::wgs84(), 45.0, 0.0);
+  const thalassa::ocean::GridCamera camera = thalassa::ocean::make_grid_camera(
+      b.right, b.up, b.forward, std::tan(0.5 * 45.0 * 3.14159265358979 / 180.0), height, 1024, 768,
+      surface);
+  int moved = 0;
+  for (auto _ : state) {
+    const thalassa::ocean::ProjectedGrid grid = thalassa::ocean::make_projected_grid(camera, 8, 2);
+    moved = grid.moved_to_horizon;
+    benchmark::DoNotOptimize(grid.rest.data());
+  }
+  state.counters["moved_to_horizon"] = moved;
+}
+
+BENCHMARK(ProjectedGridCpu)
+    ->ArgsProduct({{0, 1, 2}, {4, 1000, 8000}})
+    ->ArgNames({"sea", "h"})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -48,4 +48,22 @@ std::optional<double> sea_surface_distance(const SeaSurface& surface, double hei
 glm::dvec3 sea_surface_ray_coefficients(const SeaSurface& surface, double height,
                                         const glm::dvec3& ray);
 
+// The surface's z (m) above or below the horizontal point (x, y) (m, nadir ENU): the sag, the
+// root near 0 of f(x, y, z) = 1/2 C_zz z^2 + (1 + C_xz x + C_yz y) z + 1/2 (x, y) C_hh (x, y)^T,
+// in the cancellation-free form z = -2 q / (B + sqrt(B^2 - 2 C_zz q)); exactly 0 for the flat
+// sea, -(x^2 + y^2) / (2 r) to first order for a sphere. Assumes C positive semidefinite (a
+// convex sea); where the vertical line through (x, y) misses the surface (beyond a sphere's
+// radius), returns the z of its closest approach, -B / C_zz.
+double sea_surface_sag(const SeaSurface& surface, const glm::dvec2& xy);
+
+// The horizon seen from the camera at (0, 0, height) in the horizontal direction `azimuth`
+// (unit, x east and y north): tan(delta), delta the dip below the horizontal of the ray
+// d = azimuth - tan(delta) z-hat that grazes the surface. Rays of that azimuth meet the surface
+// exactly when their tan(dip) is at least this. Closed form: with m = H^T C H, k = (C z-hat) . H
+// and c as above, b^2 - 4 a c of d is (tan(delta) + h k)^2 - 2 c m (the tan^2 coefficient
+// (1 + h C_zz)^2 - 2 c C_zz is exactly 1), so tan(delta) = sqrt(2 c m) - h k, written without
+// cancellation. For a sphere of radius r: sqrt(h (2 r + h)) / r. 0 for the flat sea, and for a
+// camera not above the sea (height <= 0). Assumes C positive semidefinite.
+double sea_surface_horizon_dip(const SeaSurface& surface, double height, const glm::dvec2& azimuth);
+
 }  // namespace thalassa::ocean
