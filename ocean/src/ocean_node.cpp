@@ -162,7 +162,8 @@ class OceanNode final : public gl::Node {
     glUseProgram(geometry);
     const GridCamera camera =
         make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
-                         inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height);
+                         inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height,
+                         SeaSurface{inputs.sea_curvature});
     draw_grid(camera);
     draw_backstop(context.shaders, downwind, scale);
     context.timer.end_pass("ocean.geometry");
@@ -219,10 +220,10 @@ class OceanNode final : public gl::Node {
     gbuffer_height_ = target.height();
   }
 
-  // The projected grid (CPU, double), uploaded as float rest positions relative to the camera's
-  // nadir (small numbers near the camera, where precision matters) and drawn with depth. The
-  // node's grid camera still has the flat sea (GridCamera's default), so its rest z is 0, and 0
-  // goes up for z; with the frame's quadric passed to make_grid_camera, upload rest z instead.
+  // The projected grid (CPU, double) on the frame's sea at rest (the planet's quadric in the
+  // nadir frame), uploaded as float rest positions relative to the camera's nadir (m, nadir ENU:
+  // small numbers near the camera, where precision matters; z the quadric's sag, negative) and
+  // drawn with depth.
   void draw_grid(const GridCamera& camera) {
     const ProjectedGrid grid =
         make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
@@ -230,7 +231,7 @@ class OceanNode final : public gl::Node {
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 4);
     for (std::size_t k = 0; k < grid.rest.size(); ++k)
-      for (double value : {grid.rest[k].x, grid.rest[k].y, 0.0, grid.cell_size[k]})
+      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.rest[k].z, grid.cell_size[k]})
         vertices.push_back(static_cast<float>(value));
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
     const GLsizeiptr index_bytes =
@@ -286,8 +287,7 @@ class OceanNode final : public gl::Node {
 
   // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
   // corners and centre that see the sea, their footprint the distance between neighbouring
-  // pixels' points on the sea at rest (the camera's surface, flat here; what dFdx gives the
-  // shader).
+  // pixels' points on the sea at rest (the frame's curved sea; what dFdx gives the shader).
   int count_resolved(const GridCamera& camera, double scale) const {
     if (waves_.waves.empty() || !(scale > 0.0)) return 0;
     // Image points of pixel (px, py) (pixels, y up as in the image plane).

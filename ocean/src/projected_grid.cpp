@@ -120,18 +120,7 @@ glm::dvec2 image_point(const GridCamera& c, const glm::dvec3& direction) {
           glm::dot(direction, c.up) / (along * c.tan_half_fov_y)};
 }
 
-// Whether any ray through the image rectangle [lo, hi] meets the sea. The image region that
-// does is convex: it contains a corner, crosses an edge, or lies strictly inside, where it
-// contains the nadir's image point (the nadir always meets a convex sea from above).
-bool image_sees_sea(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi) {
-  const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
-  for (int k = 0; k < 4; ++k)
-    if (segment_meets_sea(camera, corners[k], corners[(k + 1) % 4])) return true;
-  const glm::dvec3 nadir(0.0, 0.0, -1.0);
-  if (!(glm::dot(nadir, camera.forward) > 0.0)) return false;
-  const glm::dvec2 p = image_point(camera, nadir);
-  return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && meets_sea(camera, nadir);
-}
+
 
 // The point (m, nadir ENU) at distance t along `ray` from the camera, its z the surface's sag
 // at its x, y (the ray's own z, h + t d_z, would carry the rounding of h, 1e-16 h, into a sag
@@ -142,6 +131,26 @@ glm::dvec3 surface_point(const GridCamera& camera, const glm::dvec3& ray, double
 }
 
 }  // namespace
+
+// The image region whose rays meet the sea is convex: it contains a corner of the rectangle,
+// crosses an edge, or lies strictly inside, where it contains the nadir's image point (the nadir
+// always meets a convex sea from above).
+bool image_sees_sea(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi) {
+  const glm::dvec2 corners[4] = {lo, {hi.x, lo.y}, hi, {lo.x, hi.y}};
+  for (int k = 0; k < 4; ++k)
+    if (segment_meets_sea(camera, corners[k], corners[(k + 1) % 4])) return true;
+  const glm::dvec3 nadir(0.0, 0.0, -1.0);
+  if (!(glm::dot(nadir, camera.forward) > 0.0)) return false;
+  const glm::dvec2 p = image_point(camera, nadir);
+  return p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y && meets_sea(camera, nadir);
+}
+
+// The rectangle lies in the convex region of rays meeting the sea iff its four corners do.
+bool image_sees_sky(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi) {
+  for (const glm::dvec2 corner : {lo, glm::dvec2(hi.x, lo.y), hi, glm::dvec2(lo.x, hi.y)})
+    if (!meets_sea(camera, grid_ray(camera, corner))) return true;
+  return false;
+}
 
 double grid_horizon_clearance(const GridCamera& camera, const glm::dvec3& ray) {
   const double length = glm::length(ray);

@@ -17,6 +17,7 @@
 #include "thalassa/engine/gl/state_guard.hpp"
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/ocean/gl/ocean_node.hpp"
+#include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/camera_frame.hpp"
 #include "thalassa/planet/nadir_frame.hpp"
@@ -59,43 +60,21 @@ gl::FrameInputs frame_inputs(const Scene& scene, const NadirFrame& frame) {
   return inputs;
 }
 
-// Which of the sky and the sea the image sees: view rays met with the sea at rest (the planet's
-// quadric). The rays that meet a convex surface form a convex region of the image plane around
-// the nadir's image point, so the sea is seen iff that region crosses the image's border (sampled
-// densely along it) or lies inside it (the nadir's image point and the centre are tried). A few
-// hundred rays in double cost microseconds.
+// Which of the sky and the sea the image sees: the image's rays against the sea at rest (the
+// planet's quadric), decided exactly by the projected grid's tests (projected_grid.hpp).
 void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& sea_visible) {
-  const CameraBasis basis{inputs.camera_right, inputs.camera_up, inputs.camera_forward};
-  const double aspect = double(inputs.width) / double(inputs.height);
-  const ocean::SeaSurface surface{inputs.sea_curvature};
-  sky_visible = sea_visible = false;
-  auto test = [&](double u, double v) {
-    const glm::dvec3 ray = glm::normalize(view_ray(basis, inputs.tan_half_fov_y, aspect, u, v));
-    const bool sea = ocean::sea_surface_distance(surface, inputs.camera_height, ray).has_value();
-    sea_visible = sea_visible || sea;
-    sky_visible = sky_visible || !sea;
-  };
-  constexpr int kSamples = 64;  // per edge
-  for (int i = 0; i <= kSamples; ++i) {
-    const double s = -1.0 + 2.0 * i / kSamples;
-    test(s, -1.0);
-    test(s, 1.0);
-    test(-1.0, s);
-    test(1.0, s);
-  }
-  test(0.0, 0.0);
-  // The nadir's image point, if the camera faces it.
-  const double down_forward = -inputs.camera_forward.z;
-  if (down_forward > 0.0) {
-    const double u = -inputs.camera_right.z / down_forward / (inputs.tan_half_fov_y * aspect);
-    const double v = -inputs.camera_up.z / down_forward / inputs.tan_half_fov_y;
-    if (std::abs(u) <= 1.0 && std::abs(v) <= 1.0) test(u, v);
-  }
   // Below the surface the sea fills the whole image with deep-water light.
   if (inputs.camera_height < 0.0) {
     sea_visible = true;
     sky_visible = false;
+    return;
   }
+  const ocean::GridCamera camera = ocean::make_grid_camera(
+      inputs.camera_right, inputs.camera_up, inputs.camera_forward, inputs.tan_half_fov_y,
+      inputs.camera_height, inputs.width, inputs.height, ocean::SeaSurface{inputs.sea_curvature});
+  const glm::dvec2 lo(-1.0), hi(1.0);  // the whole image
+  sea_visible = ocean::image_sees_sea(camera, lo, hi);
+  sky_visible = ocean::image_sees_sky(camera, lo, hi);
 }
 
 }  // namespace

@@ -407,5 +407,58 @@ TEST(ProjectedGrid, SeaInsideTheImageOrAcrossOneEdge) {
   EXPECT_EQ(summary.cameras, 2);
 }
 
+// image_sees_sea / image_sees_sky (what the renderer builds its passes from) against a dense
+// sampling of the image: a sampled ray that meets the sea (or misses it) must be found by the
+// exact test, and every camera whose samples all agree must be decided the same way. The cases
+// include the disc from geostationary orbit inside the image, across one edge and missed
+// entirely, where border samples alone would miss the inside case.
+TEST(ProjectedGrid, ImageSeesSeaAndSkyExactly) {
+  constexpr int kSamples = 41;  // per image axis
+  int decided_sea = 0, decided_sky = 0, both = 0;
+  auto check = [&](const GridCamera& c, const std::string& where) {
+    bool sampled_sea = false, sampled_sky = false;
+    for (int i = 0; i < kSamples; ++i)
+      for (int j = 0; j < kSamples; ++j) {
+        const glm::dvec2 p(-1.0 + 2.0 * i / (kSamples - 1), -1.0 + 2.0 * j / (kSamples - 1));
+        glm::dvec3 point;
+        (sea_point(c, p, point) ? sampled_sea : sampled_sky) = true;
+      }
+    const bool sea = image_sees_sea(c, glm::dvec2(-1.0), glm::dvec2(1.0));
+    const bool sky = image_sees_sky(c, glm::dvec2(-1.0), glm::dvec2(1.0));
+    if (sampled_sea) EXPECT_TRUE(sea) << where;
+    if (sampled_sky) EXPECT_TRUE(sky) << where;
+    EXPECT_TRUE(sea || sky) << where;
+    decided_sea += sea;
+    decided_sky += sky;
+    both += sea && sky;
+  };
+  for (const NamedSurface& s : surfaces())
+    for (double h : {0.01, 4.0, 19990.0, 4e5, 3.6e7})
+      for (double pitch : {-90.0, -62.5, -30.0, -1.0, 0.0, 10.0, 60.0, 90.0})
+        for (double roll : {0.0, 45.0, 180.0})
+          for (double fov : {1.0, 20.0, 45.0, 150.0}) {
+            if (s.name == "flat" && h > 2e4) continue;  // no orbit above a plane
+            check(make_camera(37.0, pitch, roll, 64, 48, h, fov, s.surface),
+                  describe(s, h, 37.0, pitch, roll, fov));
+          }
+  std::printf("%d cameras see the sea, %d the sky, %d both\n", decided_sea, decided_sky, both);
+  EXPECT_GT(both, 100);
+  // Straight down from 36,000 km with a 20 degree field: the Earth's disc (8.7 degrees in radius)
+  // lies inside the image, no border ray meets it, and the sky is around it.
+  const GridCamera geostationary =
+      make_camera(0, -90, 0, 64, 64, 3.6e7, 20.0, spherical_sea_surface(kEarthRadius));
+  for (double s : {-1.0, -0.5, 0.0, 0.5, 1.0})
+    for (glm::dvec2 border : {glm::dvec2(s, -1.0), glm::dvec2(s, 1.0), glm::dvec2(-1.0, s),
+                              glm::dvec2(1.0, s)}) {
+      glm::dvec3 point;
+      ASSERT_FALSE(sea_point(geostationary, border, point));
+    }
+  EXPECT_TRUE(image_sees_sea(geostationary, glm::dvec2(-1.0), glm::dvec2(1.0)));
+  EXPECT_TRUE(image_sees_sky(geostationary, glm::dvec2(-1.0), glm::dvec2(1.0)));
+  // Looking straight up from 4 m with 45 degrees: no sea at all.
+  const GridCamera up = make_camera(0, 90, 0, 64, 48, 4.0, 45.0, spherical_sea_surface(kEarthRadius));
+  EXPECT_FALSE(image_sees_sea(up, glm::dvec2(-1.0), glm::dvec2(1.0)));
+}
+
 }  // namespace
 }  // namespace thalassa::ocean

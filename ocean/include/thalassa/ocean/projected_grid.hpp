@@ -102,6 +102,12 @@ glm::dvec3 grid_ray(const GridCamera& camera, glm::dvec2 image);
 // sag); false when it does not (at or above the horizon, or a camera not above the sea).
 bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec3& point);
 
+// Whether any ray through the image rectangle [lo, hi] (image units, (u, v) in [-1, 1] spans
+// the image) meets the sea at rest, and whether any misses it (sees the sky), decided exactly
+// for any pitch, roll and field of view (the rays meeting a convex sea form a convex cone).
+bool image_sees_sea(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
+bool image_sees_sky(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
+
 // cell_px: the grid cell's size in pixels (the paper's default 8); margin_cells: cells added
 // beyond each edge. Returns an empty grid (0 rows) when no part of the image sees the sea.
 ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells);
