@@ -126,6 +126,12 @@ class OceanNode final : public gl::Node {
                        float(sun_disc_irradiance.x), float(sun_disc_irradiance.y),
                        float(sun_disc_irradiance.z));
     glProgramUniform1f(lighting, location(lighting, "atmosphere_radius"), float(radius));
+    if (provider_->kind() == "environment_map") {
+      // A photograph's sky irradiance, the same everywhere (ocean/sea_point_light.glsl).
+      const glm::dvec3 sky = provider_->sky_irradiance(0.0, sun);
+      glProgramUniform3f(lighting, location(lighting, "environment_sky_irradiance"), float(sky.x),
+                         float(sky.y), float(sky.z));
+    }
     glProgramUniform1f(lighting, location(lighting, "horizon_distance"),
                        float(std::sqrt(height * (2.0 * radius + height))));
     if (sky_array)

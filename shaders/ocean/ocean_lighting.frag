@@ -13,6 +13,7 @@
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
+#include "ocean/sea_point_light.glsl"
 #ifdef SKY_SHRM
 #include "atmosphere/sky_shrm.glsl"
 #endif
@@ -31,12 +32,10 @@ layout(binding = 1) uniform sampler2D variances;  // xy slope variance along, ac
 uniform vec2 downwind;                // unit, east-north-up
 uniform float fresnel_r;              // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;        // irradiance reflectance of the water body, per channel
-// Sun + sky on a horizontal surface at sea level under the nadir (the physical atmosphere, without
-// SKY_SHRM, computes it at each point instead).
+// Sun + sky on a horizontal surface at sea level under the nadir: the water body's light seen
+// from below the surface, and with SKY_SHRM the irradiance of its SH sky (elsewhere each point
+// has its own, ocean/sea_point_light.glsl).
 uniform vec3 horizontal_irradiance;
-uniform vec3 sun_disc_irradiance;     // L_sun Omega_sun before the atmosphere's transmittance
-uniform float atmosphere_radius;      // m, the provider's planet radius (a sphere tangent at the
-                                      // nadir: centre (0, 0, -atmosphere_radius))
 uniform float horizon_distance;       // m: the sea's horizon, for rays that miss its rest shape
 
 // Eq. 22 by a 3 x 3 Gauss-Hermite rule in slope space: p is a Gaussian of standard deviations
@@ -86,23 +85,14 @@ void main() {
   const float rest_distance = FrameSeaDistance(ray);
   const vec3 point = vec3(0.0, 0.0, FrameCameraHeight()) +
                      (rest_distance >= 0.0 ? rest_distance : horizon_distance) * ray;
-  const vec3 centre = vec3(0.0, 0.0, -atmosphere_radius);
-  const vec3 ground = normalize(point - centre) * atmosphere_radius;
-  const vec3 camera = vec3(0.0, 0.0, FrameCameraHeight() + atmosphere_radius);
-#if defined(SKY_PROVIDER_ATMOSPHERE)
-  // The sun and the irradiance at the point itself: across a view from 20 km the local sun zenith
-  // changes by up to 9 degrees, as it does from one pixel to the next in the view from space.
-  const vec3 sun_irradiance = sun_disc_irradiance * SkySunTransmittance(ground, sun);
+  // The sun, the irradiance and the atmosphere at the point itself: across a view from 20 km the
+  // local sun zenith changes by up to 9 degrees, as it does from one pixel to the next in the
+  // view from space.
+  const vec3 up = FrameSeaNormal(point);
+  OceanPointLight light = OceanLightAtPoint(point, up, sun);
 #ifdef SKY_SHRM
-  const vec3 irradiance = horizontal_irradiance;
-#else
-  vec3 sky_irradiance;
-  const vec3 irradiance =
-      SkySunAndSkyIrradiance(ground, normalize(ground), sun, sky_irradiance) + sky_irradiance;
-#endif
-#else
-  const vec3 sun_irradiance = sun_disc_irradiance;  // a photograph: no atmosphere
-  const vec3 irradiance = horizontal_irradiance;
+  // The SH sky's own irradiance, so that the reflected and the refracted sky are one sky.
+  light.irradiance = horizontal_irradiance;
 #endif
 
   // Sky (eq. 21, 26, 27) and refracted light (eq. 28).
@@ -130,24 +120,24 @@ void main() {
   vec3 sky = SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
 #endif
 #ifdef SKY_MAP_ARRAY
-  sky = mix(sky, OceanSkyArrayReflection(FrameSeaNormal(point), v, t_x, t_y, n, sigma, sun),
+  sky = mix(sky, OceanSkyArrayReflection(up, v, t_x, t_y, n, sigma, sun),
             sky_array_weight);
 #endif
   sea += fresnel * sky;
 #endif  // SKY_SHRM
 #endif
 #ifdef SEA_TERM
-  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, irradiance);
+  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
-  sea += sun_irradiance *
+  sea += light.sun_irradiance *
          OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
 #endif
 
   // Aerial perspective to the point.
   vec3 transmittance;
-  vec3 in_scattered = SkyAerialPerspective(camera, ground, sun, transmittance);
+  vec3 in_scattered = SkyAerialPerspective(light.camera, light.ground, sun, transmittance);
 #ifndef AIR_TERM
   in_scattered = vec3(0.0);
 #endif

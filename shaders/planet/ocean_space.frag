@@ -9,16 +9,14 @@
 // elevation" from the provider's sun-zenith-indexed array, turned so that the sun is at the map's
 // north. Then the aerial perspective between the camera and the point.
 //
-// Frames and units: the nadir frame of common/frame.glsl (m). The atmosphere is the provider's
-// sphere of radius atmosphere_radius tangent to the sea at the nadir (centre (0, 0, -R)); a point
-// of the sea is moved radially onto that sphere for the atmosphere's lookups, which keeps its
-// altitude 0 where the ellipsoid and the sphere part (up to 21 km apart at the limb seen from
-// 36,000 km; 0.2 km at 2,000 km from the nadir). Radiance in W m^-2 sr^-1 nm^-1.
+// Frames and units: the nadir frame of common/frame.glsl (m); the point's light and atmosphere as
+// ocean/sea_point_light.glsl gives them. Radiance in W m^-2 sr^-1 nm^-1.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
 #include "ocean/sky_array_reflection.glsl"
+#include "ocean/sea_point_light.glsl"
 
 layout(location = 0) out vec4 radiance;
 
@@ -26,12 +24,6 @@ uniform vec2 downwind;            // unit, the nadir frame's (east, north)
 uniform vec2 slope_variance;      // every wave's: along, across the wind (dimensionless)
 uniform float fresnel_r;          // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;    // irradiance reflectance of the water body, per channel
-uniform vec3 sun_disc_irradiance; // L_sun Omega_sun before the atmosphere's transmittance
-uniform float atmosphere_radius;  // m, the provider's planet radius
-#ifdef SKY_PROVIDER_ENVIRONMENT
-// A photograph has no atmosphere and one sky: its irradiance on a horizontal surface (sky only).
-uniform vec3 environment_sky_irradiance;
-#endif
 // Distance of the near plane, m (the depth written is OCEAN_NEAR_PLANE / view-axis distance,
 // reversed-Z with an infinite far plane, as the projected grid's).
 const float OCEAN_NEAR_PLANE = 0.01;
@@ -50,21 +42,8 @@ void main() {
   const vec3 t_y = cross(n, t_x);
   const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
 
-  // The atmosphere's view of the point.
-  const vec3 centre = vec3(0.0, 0.0, -atmosphere_radius);
-  const vec3 ground = normalize(x - centre) * atmosphere_radius;
-  const vec3 camera = vec3(0.0, 0.0, FrameCameraHeight() + atmosphere_radius);
-#ifdef SKY_PROVIDER_ENVIRONMENT
-  const vec3 sun_irradiance = sun_disc_irradiance;
-  const vec3 horizontal_irradiance =
-      sun_disc_irradiance * max(dot(n, sun), 0.0) + environment_sky_irradiance;
-#else
-  const vec3 sun_irradiance = sun_disc_irradiance * SkySunTransmittance(ground, sun);
-  vec3 sky_irradiance;
-  const vec3 sun_on_ground =
-      SkySunAndSkyIrradiance(ground, normalize(ground), sun, sky_irradiance);
-  const vec3 horizontal_irradiance = sun_on_ground + sky_irradiance;
-#endif
+  // The sun, the irradiance and the atmosphere at the point itself (ocean/sea_point_light.glsl).
+  const OceanPointLight light = OceanLightAtPoint(x, n, sun);
 
   const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
                                               fresnel_r);
@@ -74,15 +53,15 @@ void main() {
   sea += fresnel * OceanSkyArrayReflection(n, v, t_x, t_y, n, sigma, sun);
 #endif
 #ifdef SEA_TERM
-  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, horizontal_irradiance);
+  sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);
 #endif
 #ifdef SUN_GLINT
-  sea += sun_irradiance * OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n),
-                                            slope_variance, fresnel_r);
+  sea += light.sun_irradiance * OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n),
+                                                  slope_variance, fresnel_r);
 #endif
 
   vec3 transmittance;
-  vec3 in_scattered = SkyAerialPerspective(camera, ground, sun, transmittance);
+  vec3 in_scattered = SkyAerialPerspective(light.camera, light.ground, sun, transmittance);
 #ifndef AIR_TERM
   in_scattered = vec3(0.0);
 #endif
