@@ -25,6 +25,8 @@ struct RenderArgs {
   int repeat = 1;
   bool float_exr = false;
   std::string terms = "sun,sky,sea,air";  // the ocean's light terms, any subset
+  std::string method = "full";            // the ocean's shading method (ocean/method.hpp)
+  int samples = 1024;                     // the reference's most samples per pixel
 };
 
 struct SkyArgs {

@@ -44,6 +44,9 @@ std::string stats_json(const RenderStats& stats) {
   json["passes"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.passes) json["passes"][name] = ms;
   json["resolved_waves"] = stats.resolved_waves;
+  json["method"] = stats.method;
+  json["samples"] = stats.samples;
+  json["sample_row_change"] = stats.sample_row_change;
   json["sky_provider"] = stats.sky_provider;
   json["setup_ms"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.setup_ms) json["setup_ms"][name] = ms;
@@ -74,6 +77,19 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "The ocean's light terms drawn, any of sun,sky,sea,air (comma-separated; air: "
                    "the light the atmosphere scatters between the camera and the sea)")
       ->capture_default_str();
+  render
+      ->add_option("--method", args.method,
+                   "The ocean's shading method: full (the paper's), basic (fig. 10's constant "
+                   "BRDF), normals (no BRDF) or reference (every wave as geometry, a mirror, "
+                   "supersampled); other than full, the camera must be below 20000 m")
+      ->check(CLI::IsMember({"full", "basic", "normals", "reference"}))
+      ->capture_default_str();
+  render
+      ->add_option("--samples", args.samples,
+                   "The reference's most samples per pixel (it doubles them from 16 until each "
+                   "image row's total changes by less than 1%)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
 }
 
 int run_render(const RenderArgs& args) {
@@ -90,7 +106,17 @@ int run_render(const RenderArgs& args) {
   const Scene& scene = loaded.scene;
   const std::string png = png_path(args.exr, args.png, args.no_png);
   RendererOptions renderer_options;
+  renderer_options.method = *ocean::parse_method(args.method);  // CLI11 checked the word
+  renderer_options.reference.max_samples = args.samples;
+  renderer_options.reference.min_samples = std::min(renderer_options.reference.min_samples,
+                                                    args.samples);
   const std::vector<std::string> problems = {
+      renderer_options.method != ocean::OceanMethod::full &&
+              scene.camera.height >= kSpaceModeHeight
+          ? "--method " + args.method + ": expected a camera below 20000 m (the method draws the "
+                                        "projected grid's sea), got camera.height " +
+                format_number(scene.camera.height)
+          : "",
       parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
       png.empty() ? "" : check_output("--png", png, ".png"),
       args.stats.empty() ? "" : check_output("--stats", args.stats, ""),
@@ -130,7 +156,10 @@ int run_render(const RenderArgs& args) {
 
   // 3. Outputs, each written whole or not at all.
   const Metadata metadata =
-      render_metadata(scene, loaded.merged_json, stats, {{"thalassa:terms", args.terms}});
+      render_metadata(scene, loaded.merged_json, stats,
+                      {{"thalassa:terms", args.terms},
+                       {"thalassa:method", args.method},
+                       {"thalassa:samples", std::to_string(stats.samples)}});
   PendingOutputs outputs;
   write_exr(outputs.add(args.exr), image, scene.image.exr_type, metadata);
   if (!png.empty())

@@ -74,4 +74,19 @@ std::vector<float> HdrTarget::read_rgba_top_down() const {
   return read_texture_rgba_top_down(color_.get(), width_, height_, "HDR target read-back");
 }
 
+void HdrTarget::write_rgba_top_down(const std::vector<float>& rgba) {
+  const std::size_t row = std::size_t(width_) * 4;
+  if (rgba.size() != row * std::size_t(height_))
+    throw GlError("HDR target write: expected " + std::to_string(row * height_) + " floats, got " +
+                  std::to_string(rgba.size()));
+  std::vector<float> bottom_up(rgba.size());
+  for (int y = 0; y < height_; ++y)
+    std::copy_n(rgba.begin() + std::ptrdiff_t(y * row), row,
+                bottom_up.begin() + std::ptrdiff_t((height_ - 1 - y) * row));
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTextureSubImage2D(color_.get(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT,
+                      bottom_up.data());
+  check_error("HDR target write");
+}
+
 }  // namespace thalassa::gl

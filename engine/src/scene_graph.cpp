@@ -25,6 +25,8 @@ FrameUniforms make_frame_uniforms(const FrameInputs& inputs) {
   u.viewport[3] = static_cast<float>(1.0 / inputs.height);
   for (int column = 0; column < 3; ++column)
     store(u.sea_curvature[column], inputs.sea_curvature[column], 0.0);
+  u.pixel_offset[0] = static_cast<float>(inputs.pixel_offset.x);
+  u.pixel_offset[1] = static_cast<float>(inputs.pixel_offset.y);
   return u;
 }
 

@@ -18,6 +18,10 @@ namespace {
 // an edge vertex on screen except within a few metres of the camera).
 constexpr int kGridMarginCells = 2;
 
+// The reference's grid cell (pixels): one vertex per pixel (sec. 7.2's reference used about
+// 5 cm triangles; its normals are exact per sample here, its positions to a pixel).
+constexpr double kReferenceGridCell = 1.0;
+
 class OceanNode final : public gl::Node {
  public:
   explicit OceanNode(const OceanNodeOptions& options)
@@ -47,6 +51,8 @@ class OceanNode final : public gl::Node {
   std::vector<std::string> built() const override {
     std::vector<std::string> list = {"ocean.waves." + std::to_string(waves_.waves.size()),
                                      "ocean.projected_grid", "ocean.backstop", "ocean.ross_brdf"};
+    if (options_.method != OceanMethod::full)
+      list.push_back("ocean.method." + std::string(method_name(options_.method)));
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky)
       list.push_back(options_.sky_shrm           ? "ocean.sky_reflection.shrm"
@@ -147,8 +153,10 @@ class OceanNode final : public gl::Node {
     }
 
     // Pass 1, positions + normals + variances (sec. 7.3's first part), into the G-buffer.
-    const GLuint geometry = context.shaders.program(
-        {.vertex = "ocean/ocean.vert", .fragment = "ocean/ocean_geometry.frag"});
+    const gl::Defines geometry_defines = method_defines();
+    const GLuint geometry = context.shaders.program({.vertex = "ocean/ocean.vert",
+                                                     .fragment = "ocean/ocean_geometry.frag",
+                                                     .defines = geometry_defines});
     upload_phases(inputs);
     glProgramUniform1i(geometry, location(geometry, "wave_count"),
                        static_cast<GLint>(waves_.waves.size()));
@@ -170,6 +178,19 @@ class OceanNode final : public gl::Node {
         make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
                          inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height,
                          SeaSurface{inputs.sea_curvature});
+    const double footprint = smallest_footprint(camera);
+    if (options_.method == OceanMethod::basic) {
+      // Fig. 10's constant BRDF: the full method's unresolved variance where the pixels' footprint
+      // is smallest (the foreground), for every pixel.
+      const SlopeVariance constant =
+          std::isfinite(footprint) && scale > 0.0f
+              ? unresolved_slope_variance(waves_, std::max(footprint / scale, 1e-6),
+                                          options_.settings.n_min, options_.settings.n_max)
+              : waves_.tail_variance.front();
+      constant_variance_ = {constant.along, constant.across};
+      glProgramUniform2f(geometry, location(geometry, "constant_variance"),
+                         float(constant_variance_.x), float(constant_variance_.y));
+    }
     draw_grid(camera);
     draw_backstop(context.shaders, downwind, scale);
     context.timer.end_pass("ocean.geometry");
@@ -181,7 +202,7 @@ class OceanNode final : public gl::Node {
     glBindTextureUnit(1, variance_texture_.get());
     gl::draw_fullscreen_pass();
     context.timer.end_pass("ocean.lighting");
-    resolved_waves_ = count_resolved(camera, resolved_wave_scale(inputs.camera_height));
+    resolved_waves_ = count_resolved(footprint, resolved_wave_scale(inputs.camera_height));
   }
 
   int resolved_waves() const override { return resolved_waves_; }
@@ -230,9 +251,25 @@ class OceanNode final : public gl::Node {
   // nadir frame), uploaded as float rest positions relative to the camera's nadir (m, nadir ENU:
   // small numbers near the camera, where precision matters; z the quadric's sag, negative) and
   // drawn with depth.
+  // The first pass's defines for the method (ocean.vert, ocean_geometry.frag).
+  gl::Defines method_defines() const {
+    switch (options_.method) {
+      case OceanMethod::full: return {};
+      case OceanMethod::basic: return {{"METHOD_BASIC", "1"}};
+      case OceanMethod::normals: return {{"METHOD_NORMALS", "1"}};
+      case OceanMethod::reference: return {{"METHOD_REFERENCE", "1"}};
+    }
+    return {};
+  }
+
+  // The grid's cell (pixels): the scene's, or for the reference kReferenceGridCell.
+  double grid_cell() const {
+    return options_.method == OceanMethod::reference ? kReferenceGridCell
+                                                     : options_.settings.grid_cell;
+  }
+
   void draw_grid(const GridCamera& camera) {
-    const ProjectedGrid grid =
-        make_projected_grid(camera, options_.settings.grid_cell, kGridMarginCells);
+    const ProjectedGrid grid = make_projected_grid(camera, grid_cell(), kGridMarginCells);
     if (grid.rows == 0) return;
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 4);
@@ -271,9 +308,11 @@ class OceanNode final : public gl::Node {
   // depth is still the cleared far plane, so it costs only what the holes cover (and an early
   // discard on the sky).
   void draw_backstop(gl::ShaderLibrary& shaders, const glm::dvec2& downwind, float scale) {
+    gl::Defines defines = method_defines();
+    defines["BACKSTOP"] = "1";
     const GLuint program = shaders.program({.vertex = "engine/fullscreen.vert",
                                             .fragment = "ocean/ocean_geometry.frag",
-                                            .defines = {{"BACKSTOP", "1"}}});
+                                            .defines = defines});
     glProgramUniform1i(program, glGetUniformLocation(program, "wave_count"),
                        static_cast<GLint>(waves_.waves.size()));
     glProgramUniform2f(program, glGetUniformLocation(program, "downwind"), float(downwind.x),
@@ -283,6 +322,8 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(program, glGetUniformLocation(program, "n_max"),
                        float(options_.settings.n_max));
     glProgramUniform1f(program, glGetUniformLocation(program, "resolved_wave_scale"), scale);
+    glProgramUniform2f(program, glGetUniformLocation(program, "constant_variance"),
+                       float(constant_variance_.x), float(constant_variance_.y));
     glUseProgram(program);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
@@ -291,11 +332,10 @@ class OceanNode final : public gl::Node {
     glDepthMask(GL_TRUE);
   }
 
-  // The waves the shader sums for the pixel with the smallest footprint on the sea: the image
-  // corners and centre that see the sea, their footprint the distance between neighbouring
-  // pixels' points on the sea at rest (the frame's curved sea; what dFdx gives the shader).
-  int count_resolved(const GridCamera& camera, double scale) const {
-    if (waves_.waves.empty() || !(scale > 0.0)) return 0;
+  // The smallest footprint of a pixel on the sea at rest (m): over the image corners and centre
+  // that see the sea, the distance between neighbouring pixels' points (what dFdx gives the
+  // shader); +inf when none does.
+  static double smallest_footprint(const GridCamera& camera) {
     // Image points of pixel (px, py) (pixels, y up as in the image plane).
     auto image = [&](double px, double py) {
       return glm::dvec2(2.0 * px / camera.width - 1.0, 2.0 * py / camera.height_px - 1.0);
@@ -309,8 +349,15 @@ class OceanNode final : public gl::Node {
           continue;
         smallest = std::min(smallest, std::max(glm::length(px1 - p), glm::length(py1 - p)));
       }
-    if (!std::isfinite(smallest)) return 0;
-    return resolved_wave_range(waves_, std::max(smallest / scale, 1e-6), options_.settings.n_min,
+    return smallest;
+  }
+
+  // The waves the shader sums for the pixel with the smallest footprint (m); the reference
+  // sums all.
+  int count_resolved(double footprint, double scale) const {
+    if (options_.method == OceanMethod::reference) return static_cast<int>(waves_.waves.size());
+    if (waves_.waves.empty() || !(scale > 0.0) || !std::isfinite(footprint)) return 0;
+    return resolved_wave_range(waves_, std::max(footprint / scale, 1e-6), options_.settings.n_min,
                                options_.settings.n_max)
         .positive;
   }
@@ -332,6 +379,7 @@ class OceanNode final : public gl::Node {
   GLsizeiptr vertex_capacity_ = 0;
   GLsizeiptr index_capacity_ = 0;
   int resolved_waves_ = 0;
+  glm::dvec2 constant_variance_{0.0};  // the basic method's slope variance (along, across wind)
 };
 
 }  // namespace

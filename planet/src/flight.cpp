@@ -616,11 +616,12 @@ std::string Flight::scene_source_of(std::string_view key) const {
 // The flight `thalassa fly` renders with no file; data/flights/orbit_to_surface.json holds the
 // same document (tests/unit/flight_test.cpp checks it). Over the Pacific at sunset: the sun 2
 // degrees above the western horizon; the camera descends from 400 km to 2 m, evenly in the
-// logarithm of its height, facing west, and turns from straight down to just below the horizon,
-// settling there over the last 3 s (the pitch keyframe at 17 s makes the end slope flat).
+// logarithm of its height, facing west. Its pitch follows the horizon's dip (20 degrees at
+// 400 km, 4.5 at 20 km) so that the limb, the sky and the sun's glint stay in view all the way:
+// -22 degrees in orbit, -3 at the end.
 std::string_view default_flight_json() {
   return R"json({
-  "description": "From orbit to the sea at sunset: 400 km down to 2 m in 20 s, facing the setting sun, turning from straight down to the horizon.",
+  "description": "From orbit to the sea at sunset: 400 km down to 2 m in 20 s, facing the setting sun, from the planet's limb and the glint seen from orbit down to the waves.",
   "scene": {
     "camera": {"lat": 20, "lon": -150, "heading": 270, "roll": 0, "fov_y": 45},
     "sun": {"zenith": 88, "azimuth": 270},
@@ -629,9 +630,9 @@ std::string_view default_flight_json() {
   "fps": 24,
   "duration": 20,
   "keyframes": [
-    {"time": 0, "camera": {"height": 400000, "pitch": -90}},
-    {"time": 10, "camera": {"pitch": -60}},
-    {"time": 17, "camera": {"pitch": -5}},
+    {"time": 0, "camera": {"height": 400000, "pitch": -22}},
+    {"time": 6, "camera": {"pitch": -15}},
+    {"time": 14, "camera": {"pitch": -6}},
     {"time": 20, "camera": {"height": 2, "pitch": -3}}
   ]
 }

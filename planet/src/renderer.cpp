@@ -143,7 +143,18 @@ struct Renderer::Impl {
                                        .sea = options.terms.sea,
                                        .air = options.terms.air,
                                        .provider = provider}));
-    else if (sea_visible)
+    if (space && options.method != ocean::OceanMethod::full)
+      throw SceneError("--method " + std::string(ocean::method_name(options.method)) +
+                       ": expected a camera below " + std::to_string(int(kSpaceModeHeight)) +
+                       " m (the method draws the projected grid's sea), got camera.height " +
+                       std::to_string(scene.camera.height));
+    if (options.method == ocean::OceanMethod::reference) {
+      const ReferenceSampling& r = options.reference;
+      if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0))
+        throw std::invalid_argument("ReferenceSampling: expected 1 <= min_samples <= max_samples "
+                                    "and row_tolerance > 0");
+    }
+    if (sea_visible && !space)
       graph.add(
           ocean::make_ocean_node({.settings = scene.ocean,
                                   .sun_glint = sun_up && options.terms.sun,
@@ -152,14 +163,98 @@ struct Renderer::Impl {
                                   .air = options.terms.air,
                                   .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
                                   .sky_shrm = scene.ocean.sky_filter == "shrm",
-                                  .provider = provider}));
+                                  .provider = provider,
+                                  .method = options.method}));
   }
+
+  // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
+  double draw_frame() {
+    gl::PassTime frame;
+    {
+      const gl::StateGuard guard;  // a host's context gets its state back
+      graph.render(inputs, target, shaders, timer);
+    }
+    const auto passes = timer.resolve(frame);
+    const bool wall = timer.source() == gl::TimingSource::FinishWallClock;
+    pass_order.clear();
+    for (const auto& pass : passes) {
+      pass_order.push_back(pass.name);
+      pass_ms[pass.name].push_back(wall ? pass.wall_ms : pass.query_ms);
+    }
+    return wall ? frame.wall_ms : frame.query_ms;
+  }
+
+  // The reference: frames at Halton (2, 3) pixel offsets averaged in double, the sample count
+  // doubled until the rows' totals settle (ReferenceSampling); the average goes back into the
+  // HDR target, so that image(), present() and the host's texture all show it. Returns the
+  // summed time of its frames (ms).
+  double draw_reference(int max_samples) {
+    const int width = target.width(), height = target.height();
+    std::vector<double> sum(std::size_t(width) * height * 4, 0.0);
+    auto row_totals = [&](int count) {
+      std::vector<double> totals(height, 0.0);
+      for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x) {
+          const double* p = &sum[(std::size_t(y) * width + x) * 4];
+          totals[y] += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / count;
+        }
+      return totals;
+    };
+    double ms = 0.0;
+    int count = 0;
+    std::vector<double> half_totals;
+    samples = 0;
+    sample_row_change = 0.0;
+    for (int goal = std::min(reference.min_samples, max_samples);; goal *= 2) {
+      goal = std::min(goal, max_samples);
+      for (; count < goal; ++count) {
+        inputs.pixel_offset = {radical_inverse(2, count + 1) - 0.5,
+                               radical_inverse(3, count + 1) - 0.5};
+        ms += draw_frame();
+        const std::vector<float> rgba = target.read_rgba_top_down();
+        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rgba[i];
+      }
+      const std::vector<double> totals = row_totals(count);
+      if (!half_totals.empty()) {
+        sample_row_change = 0.0;
+        for (int y = 0; y < height; ++y)
+          if (totals[y] > 0.0)
+            sample_row_change =
+                std::max(sample_row_change, std::abs(totals[y] - half_totals[y]) / totals[y]);
+        if (sample_row_change < reference.row_tolerance) break;
+      }
+      if (count >= max_samples) break;
+      half_totals = totals;
+    }
+    inputs.pixel_offset = glm::dvec2(0.0);
+    samples = count;
+    std::vector<float> average(sum.size());
+    for (std::size_t i = 0; i < sum.size(); ++i) average[i] = float(sum[i] / count);
+    target.write_rgba_top_down(average);
+    return ms;
+  }
+
+  // The Halton sequence's radical inverse of i in `base`, in [0, 1).
+  static double radical_inverse(int base, int i) {
+    double inverse = 0.0, scale = 1.0 / base;
+    for (; i > 0; i /= base, scale /= base) inverse += (i % base) * scale;
+    return inverse;
+  }
+
+  RendererOptions renderer_options;
+  ReferenceSampling reference;
+  int samples = 1;
+  double sample_row_change = 0.0;
 };
 
 Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions options)
     : impl_(std::make_unique<Impl>(context, scene, options)) {
-  // A first frame compiles every shader, so that no timed frame includes compilation.
-  render();
+  impl_->renderer_options = options;
+  impl_->reference = options.reference;
+  // A first frame compiles every shader, so that no timed frame includes compilation (one sample
+  // of the reference is enough for that).
+  impl_->context.make_current();
+  impl_->draw_frame();
   impl_->frame_ms.clear();
   impl_->pass_ms.clear();
 }
@@ -177,19 +272,10 @@ Renderer::~Renderer() {
 void Renderer::render() {
   Impl& m = *impl_;
   m.context.make_current();
-  gl::PassTime frame;
-  {
-    const gl::StateGuard guard;  // a host's context gets its state back
-    m.graph.render(m.inputs, m.target, m.shaders, m.timer);
-  }
-  const auto passes = m.timer.resolve(frame);
-  const bool wall = m.timer.source() == gl::TimingSource::FinishWallClock;
-  m.frame_ms.push_back(wall ? frame.wall_ms : frame.query_ms);
-  m.pass_order.clear();
-  for (const auto& pass : passes) {
-    m.pass_order.push_back(pass.name);
-    m.pass_ms[pass.name].push_back(wall ? pass.wall_ms : pass.query_ms);
-  }
+  // The reference's frame is all its samples (its passes' times stay per sample).
+  m.frame_ms.push_back(m.renderer_options.method == ocean::OceanMethod::reference
+                           ? m.draw_reference(m.renderer_options.reference.max_samples)
+                           : m.draw_frame());
 }
 
 Image Renderer::image() const {
@@ -248,6 +334,9 @@ RenderStats Renderer::stats() const {
   for (const auto& node : m.graph.nodes())
     for (const auto& item : node->built()) stats.built.push_back(item);
   stats.sky_provider = m.provider->kind();
+  stats.method = std::string(ocean::method_name(m.renderer_options.method));
+  stats.samples = m.samples;
+  stats.sample_row_change = m.sample_row_change;
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
   if (m.provider->sky_map_ms() > 0.0)

@@ -13,16 +13,32 @@ layout(std140, binding = 0) uniform Frame {
   // C of the sea at rest z + 1/2 x^T C x = 0 (1/m; symmetric; 0 for the flat sea): the WGS84
   // ellipsoid or the sphere through the nadir, exactly (ocean/sea_surface.hpp).
   mat3 frame_sea_curvature;
+  // xy: where each pixel is sampled, relative to its centre (pixels; 0 but in supersampled
+  // renders); zw unused.
+  vec4 frame_pixel_offset;
 };
 
-// The unit view ray through a window position (gl_FragCoord.xy, pixels, origin bottom-left).
+// The unit view ray through a window position (gl_FragCoord.xy, pixels, origin bottom-left),
+// moved by the frame's pixel offset.
 vec3 FrameViewRay(vec2 frag_coord) {
-  const vec2 ndc = frag_coord * frame_viewport.zw * 2.0 - 1.0;
+  const vec2 ndc = (frag_coord + frame_pixel_offset.xy) * frame_viewport.zw * 2.0 - 1.0;
   return normalize(frame_camera_forward.xyz + ndc.x * frame_camera_right.w * frame_camera_right.xyz +
                    ndc.y * frame_camera_up.w * frame_camera_up.xyz);
 }
 
 float FrameCameraHeight() { return frame_camera_forward.w; }
+
+// Clip-space position of a camera-relative point d (m, nadir frame), reversed-Z with an infinite
+// far plane (depth = near / distance along the view axis), the image shifted so that each pixel
+// centre sees what FrameViewRay(centre) sees.
+vec4 FrameClipPosition(vec3 d, float near) {
+  const float along = dot(d, frame_camera_forward.xyz);
+  return vec4(dot(d, frame_camera_right.xyz) / frame_camera_right.w -
+                  2.0 * frame_pixel_offset.x * frame_viewport.z * along,
+              dot(d, frame_camera_up.xyz) / frame_camera_up.w -
+                  2.0 * frame_pixel_offset.y * frame_viewport.w * along,
+              near, along);
+}
 vec3 FrameSunDirection() { return frame_sun_direction.xyz; }
 
 // The quadratic a t^2 + b t + c of the sea at rest along the unit ray from the camera

@@ -31,7 +31,11 @@ void main() {
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
+#ifdef METHOD_REFERENCE
+    const float w_p = 1.0;  // every wave as geometry (issue 6's reference)
+#else
     const float w_p = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / cell);
+#endif
     if (w_p <= 0.0) break;  // longest first: every later wave is shorter
     const vec2 direction = vec2(a.x, a.y);
     displacement +=
@@ -40,8 +44,6 @@ void main() {
   const vec3 p = x + FrameSeaTangentFrame(x) * displacement;
   // Camera-relative (the camera is at height FrameCameraHeight() above the nadir).
   const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
-  gl_Position = vec4(dot(d, frame_camera_right.xyz) / frame_camera_right.w,
-                     dot(d, frame_camera_up.xyz) / frame_camera_up.w, OCEAN_NEAR_PLANE,
-                     dot(d, frame_camera_forward.xyz));
+  gl_Position = FrameClipPosition(d, OCEAN_NEAR_PLANE);
   rest_position = x;
 }

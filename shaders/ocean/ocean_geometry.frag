@@ -4,6 +4,9 @@
 // w_n; not from the filtered positions), and the shorter ones give the unresolved slope
 // variance (eq. 4, w_r = 1 - w_n). Both go to a G-buffer that ocean_lighting.frag shades.
 //
+// METHOD_BASIC, METHOD_NORMALS and METHOD_REFERENCE select the methods the validation compares
+// with it (ocean/method.hpp; issue 6, paper sec. 7.2, fig. 10).
+//
 // With BACKSTOP the same shader runs as a full-screen pass after the grid, on the pixels the
 // grid left uncovered (depth test EQUAL to the cleared far depth): their rest position is where
 // the view ray meets the sea at rest. A camera lower than the crests around it (1.5 m over a
@@ -40,6 +43,11 @@ uniform float n_max;
 // Scales every wavelength in the filter weights: 1, falling to 0 as the camera rises to the view
 // from space (ocean/gl/ocean_node.hpp, resolved_wave_scale).
 uniform float resolved_wave_scale;
+#ifdef METHOD_BASIC
+// Fig. 10's basic method: one slope variance (along, across the wind) for every pixel, the full
+// method's in the image's foreground (ocean/method.hpp).
+uniform vec2 constant_variance;
+#endif
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
@@ -68,7 +76,11 @@ void main() {
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
+#ifdef METHOD_REFERENCE
+    const float w_n = 1.0;  // every wave's normal, exactly at the sample (issue 6's reference)
+#else
     const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
+#endif
     if (w_n <= 0.0) {
       first_unresolved = i;
       break;
@@ -109,5 +121,12 @@ void main() {
   const vec2 slope_dy = dFdy(wind_slope);
   const vec2 pixel_variance =
       min((slope_dx * slope_dx + slope_dy * slope_dy) / 12.0, vec2(ANTIALIAS_MAX_VARIANCE));
+#if defined(METHOD_REFERENCE) || defined(METHOD_NORMALS)
+  // A mirror: no BRDF width (the sun term keeps its disc's, ocean/ross_brdf.glsl).
+  variance_out = vec4(0.0);
+#elif defined(METHOD_BASIC)
+  variance_out = vec4(constant_variance, 0.0, 0.0);
+#else
   variance_out = vec4(tails[first_unresolved] + partial_variance + pixel_variance, 0.0, 0.0);
+#endif
 }

@@ -183,6 +183,30 @@ TEST_F(Cli, LightTermsAddUp) {
   EXPECT_GT(sea_pixels, 100);
 }
 
+// Every method renders, says which it was in the statistics and the EXR, and the reference says
+// how many samples it averaged.
+TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
+  for (const char* method : {"full", "basic", "normals", "reference"}) {
+    const std::string name(method);
+    ASSERT_EQ(run("render " + kSmall + " --no-png --method " + name + " --samples 4 -o " + name +
+                  ".exr --stats " + name + ".json")
+                  .status,
+              0)
+        << method;
+    std::ifstream in(dir_ / (name + ".json"));
+    const auto stats = nlohmann::json::parse(in);
+    EXPECT_EQ(stats["method"], name);
+    EXPECT_EQ(stats["samples"], name == "reference" ? 4 : 1);
+    const auto built = stats["built"].get<std::vector<std::string>>();
+    EXPECT_EQ(std::find(built.begin(), built.end(), "ocean.method." + name) != built.end(),
+              name != "full")
+        << method;
+  }
+  const auto full = thalassa::read_image((dir_ / "full.exr").string());
+  const auto reference = thalassa::read_image((dir_ / "reference.exr").string());
+  EXPECT_NE(full.rgba, reference.rgba);
+}
+
 TEST_F(Cli, SceneFileAndSetOverride) {
   write("scene.json", R"({"image": {"width": 20, "height": 10}, "camera": {"pitch": 10}})");
   ASSERT_EQ(run("render scene.json --set image.height=12 -o a.exr --png b.png").status, 0);
@@ -230,7 +254,10 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   expect_invalid(run("render --set sky.exr=noon.exr"), {"--set: sky.exr", "noon.exr"});
   expect_invalid(run("render --terms sun,moon"), {"--terms", "moon"});
   expect_invalid(run("render --terms ,"), {"--terms"});
+  expect_invalid(run("render --method reference --set camera.height=30000"),
+                 {"--method reference", "below 20000 m", "camera.height"});
   EXPECT_EQ(run("render --backend vulkan").status, 2);
+  EXPECT_EQ(run("render --method photon-mapping").status, 2);
   EXPECT_EQ(run("frobnicate").status, 2);
   EXPECT_EQ(files(), std::vector<std::string>{});
 }

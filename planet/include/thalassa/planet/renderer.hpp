@@ -15,6 +15,7 @@
 #include "thalassa/engine/context.hpp"
 #include "thalassa/engine/image.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/method.hpp"
 #include "thalassa/planet/geodesy.hpp"
 
 namespace thalassa {
@@ -38,6 +39,12 @@ struct RenderStats {
   int resolved_waves = 0;          // waves summed as geometry or normals (surface mode)
   std::vector<std::string> built;  // modules and shader features this scene caused to exist
   std::string sky_provider;        // "atmosphere" or "environment_map"
+  std::string method = "full";     // the ocean's shading method (ocean/method.hpp)
+  // The reference method: samples averaged per pixel, and the largest relative change of an
+  // image row's total luminance between the average of the first samples / 2 and of all of them
+  // (its convergence test); 1 sample and 0 for the other methods.
+  int samples = 1;
+  double sample_row_change = 0.0;
   // One-off costs, wall-clock ms: "sky.provider" (creating it, the atmosphere's tables computed
   // or loaded from the cache included), "atmosphere.precompute" / "atmosphere.load",
   // "sky.map", "sky.map_array".
@@ -55,9 +62,23 @@ struct LightTerms {
   bool air = true;
 };
 
+// How the reference method samples each pixel: frames drawn at pixel offsets of the Halton
+// (2, 3) sequence and averaged, doubling from min_samples until doubling changes every image
+// row's total luminance by less than row_tolerance (relative), or max_samples are reached
+// (Bruneton et al. 2010 sec. 7.2's supersampled reference; issue 6, point 1).
+struct ReferenceSampling {
+  int min_samples = 16;
+  int max_samples = 1024;
+  double row_tolerance = 0.01;
+};
+
 struct RendererOptions {
   std::vector<std::string> shader_roots;  // searched before the default shader folders
   LightTerms terms;
+  // The ocean's shading method. Methods other than `full` draw the projected grid's sea only:
+  // the camera must be below kSpaceModeHeight (SceneError otherwise).
+  ocean::OceanMethod method = ocean::OceanMethod::full;
+  ReferenceSampling reference;
   // Folder of the atmosphere's table cache (empty: $THALASSA_CACHE_DIR, else
   // $XDG_CACHE_HOME/thalassa, else ~/.cache/thalassa).
   std::string cache_dir;

@@ -31,6 +31,9 @@ class HdrTarget {
   void begin();
   // Reads the colour back as RGBA floats, top row first (GL's rows are bottom-up).
   std::vector<float> read_rgba_top_down() const;
+  // Replaces the colour with RGBA floats given top row first (width * height * 4 of them), as a
+  // supersampled image's average.
+  void write_rgba_top_down(const std::vector<float>& rgba);
 
  private:
   int width_;

@@ -36,6 +36,10 @@ struct FrameInputs {
   // wave_origin + wave_axes * (x.x, x.y), metres.
   glm::dvec2 wave_origin{0.0};
   glm::dmat2 wave_axes{1.0};
+  // Where in its pixel each pixel is sampled, relative to the centre (pixels, x right, y up;
+  // each in [-0.5, 0.5]): 0 for one sample per pixel; a supersampled render (the reference
+  // method) averages frames drawn with different offsets.
+  glm::dvec2 pixel_offset{0.0};
 };
 
 // The per-frame uniform block shared by all passes: shaders/common/frame.glsl declares the
@@ -47,8 +51,9 @@ struct FrameUniforms {
   float sun_direction[4];   // xyz; w unused
   float viewport[4];        // width, height, 1 / width, 1 / height (pixels)
   float sea_curvature[3][4];  // the columns of FrameInputs::sea_curvature (std140 mat3), 1/m
+  float pixel_offset[4];      // xy: FrameInputs::pixel_offset (pixels); zw unused
 };
-static_assert(sizeof(FrameUniforms) == 8 * 16, "std140 layout of shaders/common/frame.glsl");
+static_assert(sizeof(FrameUniforms) == 9 * 16, "std140 layout of shaders/common/frame.glsl");
 constexpr GLuint kFrameBinding = 0;
 
 FrameUniforms make_frame_uniforms(const FrameInputs& inputs);

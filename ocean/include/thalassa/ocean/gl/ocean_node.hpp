@@ -12,6 +12,7 @@
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/method.hpp"
 
 namespace thalassa::ocean {
 
@@ -29,6 +30,9 @@ struct OceanNodeOptions {
   bool sky_shrm = false;
   // All sky light: the sky map, sun radiance, irradiance and aerial perspective.
   std::shared_ptr<atmosphere::SkyProvider> provider;
+  // The shading method (ocean/method.hpp). The reference's node draws one sample per pixel, at
+  // the frame's pixel_offset; the renderer averages many.
+  OceanMethod method = OceanMethod::full;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
