@@ -12,8 +12,8 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-[[noreturn]] void fail(std::string_view source, const std::string& path, const std::string& expected,
-                       const std::string& got) {
+[[noreturn]] void fail(std::string_view source, const std::string& path,
+                       const std::string& expected, const std::string& got) {
   std::string message(source);
   if (!path.empty()) message += ": " + path;
   throw SuiteError(message + ": expected " + expected + ", got " + got);

@@ -89,14 +89,18 @@ TEST(Suite, RefusesMalformedFilesNamingWhereAndWhat) {
        "suite.json: suite: expected a string, got nothing (it is required)"},
       {R"({"suite": "Stress!", "cases": [{"name": "a", "set": {}}]})",
        "suite.json: suite: expected a name of [a-z0-9_], got \"Stress!\""},
-      {R"({"suite": "s"})", "suite.json: cases: expected an array of cases, got nothing (it is required)"},
-      {R"({"suite": "s", "cases": []})", "suite.json: cases: expected a non-empty array of cases, got an array"},
+      {R"({"suite": "s"})",
+       "suite.json: cases: expected an array of cases, got nothing (it is required)"},
+      {R"({"suite": "s", "cases": []})",
+       "suite.json: cases: expected a non-empty array of cases, got an array"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.hieght": 1}}]})",
-       "suite.json: cases[0].set.camera.hieght: expected a scene key (docs/scene.md), got an unknown key"},
+       "suite.json: cases[0].set.camera.hieght: expected a scene key (docs/scene.md), got an "
+       "unknown key"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera": {"height": 1}}}]})",
        "suite.json: cases[0].set.camera: expected a scene key (docs/scene.md), got an unknown key"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.height": [1]}}]})",
-       "suite.json: cases[0].set.camera.height: expected a number, string or boolean, got an array"},
+       "suite.json: cases[0].set.camera.height: expected a number, string or boolean, got an "
+       "array"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.height": null}}]})",
        "suite.json: cases[0].set.camera.height: expected a number, string or boolean, got null"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}}, {"name": "a", "set": {}}]})",
@@ -106,14 +110,16 @@ TEST(Suite, RefusesMalformedFilesNamingWhereAndWhat) {
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 1}]})",
        "suite.json: cases[0].expect: expected 0 or 2, got 1"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 2}]})",
-       "suite.json: cases[0].error: expected the text the error message must contain (expect is 2), got nothing"},
+       "suite.json: cases[0].error: expected the text the error message must contain (expect is "
+       "2), got nothing"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "error": "x"}]})",
        "suite.json: cases[0].error: expected no error text where expect is 0, got an error text"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "speed": 1}]})",
        "suite.json: cases[0].speed: expected one of name, description, set, expect, error, got an "
        "unknown member"},
       {R"({"suite": "s", "base": [], "cases": [{"name": "a", "set": {}}]})",
-       "suite.json: base: expected an object of scene keys (\"camera.height\": 0.01), got an array"},
+       "suite.json: base: expected an object of scene keys (\"camera.height\": 0.01), got an "
+       "array"},
   };
   for (const Bad& bad : cases) EXPECT_EQ(load_error(bad.text), bad.message) << bad.text;
   // Invalid JSON: the parser's reason after the source.
@@ -155,13 +161,35 @@ TEST(StressSuite, HoldsEveryCaseOfTheIssue) {
   const Suite suite = load_suite_file(kStressSuite);
   std::set<std::string> names;
   for (const SuiteCase& c : suite.cases) names.insert(c.name);
-  for (const char* name :
-       {"sun_at_zenith", "sun_at_horizon", "sun_1_deg_below", "sun_12_deg_below",
-        "camera_straight_down", "camera_straight_up", "camera_rolled_90", "camera_rolled_180",
-        "fov_1", "fov_150", "camera_at_0_m", "camera_at_1_cm", "camera_below_surface",
-        "camera_inside_crest", "camera_at_20_km", "camera_at_36000_km", "lat_90", "lat_minus_90",
-        "lon_180", "lon_minus_180", "wind_0", "wind_40", "waves_1", "waves_1000",
-        "lambda_min_equals_max", "image_1x1", "image_4096x4096", "time_0", "time_1e9"})
+  for (const char* name : {"sun_at_zenith",
+                           "sun_at_horizon",
+                           "sun_1_deg_below",
+                           "sun_12_deg_below",
+                           "camera_straight_down",
+                           "camera_straight_up",
+                           "camera_rolled_90",
+                           "camera_rolled_180",
+                           "fov_1",
+                           "fov_150",
+                           "camera_at_0_m",
+                           "camera_at_1_cm",
+                           "camera_below_surface",
+                           "camera_inside_crest",
+                           "camera_at_20_km",
+                           "camera_at_36000_km",
+                           "lat_90",
+                           "lat_minus_90",
+                           "lon_180",
+                           "lon_minus_180",
+                           "wind_0",
+                           "wind_40",
+                           "waves_1",
+                           "waves_1000",
+                           "lambda_min_equals_max",
+                           "image_1x1",
+                           "image_4096x4096",
+                           "time_0",
+                           "time_1e9"})
     EXPECT_TRUE(names.count(name)) << name;
 }
 

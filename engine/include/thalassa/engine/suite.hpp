@@ -33,11 +33,11 @@ class SuiteError : public std::runtime_error {
 using SuiteOverride = std::pair<std::string, std::string>;
 
 struct SuiteCase {
-  std::string name;                     // [a-z0-9_]+, unique within the suite
-  std::string description;              // why the case is there ("" when not given)
+  std::string name;                      // [a-z0-9_]+, unique within the suite
+  std::string description;               // why the case is there ("" when not given)
   std::vector<SuiteOverride> overrides;  // in file order
-  int expected_exit = 0;                // 0 (renders, every pixel finite) or 2 (invalid input)
-  std::string expected_error;           // with 2: a substring of the one-line error message
+  int expected_exit = 0;                 // 0 (renders, every pixel finite) or 2 (invalid input)
+  std::string expected_error;            // with 2: a substring of the one-line error message
 };
 
 struct Suite {
