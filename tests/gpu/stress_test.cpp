@@ -2,8 +2,8 @@
 // in-process through the library: every case that expects exit status 0 renders, and every pixel
 // of its EXR, written as the command line writes it (scene.image.exr_type, half by default) and
 // read back, is finite. (The cases that expect 2 are checked without GL in
-// tests/unit/suite_test.cpp.) One gtest, hence one ctest entry, per case, so that ctest -j runs
-// them in parallel.
+// tests/unit/suite_test.cpp.) The cases are split into a few shards, one gtest (hence one ctest
+// entry) each, so that ctest -j runs them in parallel.
 //
 // A case larger than kCiPixelBudget (image_4096x4096: a frame of that size takes tens of seconds
 // on llvmpipe, docs/numerics.md) is rendered in CI as two surrogates that hold exactly its own
@@ -76,14 +76,10 @@ TEST(StressSuite, Loads) {
   EXPECT_GT(rendered_case_names().size(), 20u);
 }
 
-class Stress : public ::testing::TestWithParam<std::string> {};
-
-TEST_P(Stress, RendersAFiniteImage) {
-  const Suite& suite = stress_suite();
-  const auto it = std::find_if(suite.cases.begin(), suite.cases.end(),
-                               [&](const SuiteCase& c) { return c.name == GetParam(); });
-  ASSERT_NE(it, suite.cases.end());
-  const Scene scene = build_suite_case_scene(suite, *it);
+// Renders one case of the suite and checks its EXR.
+void check_case(GlContext& context, const SuiteCase& c) {
+  SCOPED_TRACE(c.name);
+  const Scene scene = build_suite_case_scene(stress_suite(), c);
   std::vector<Scene> renders;
   const char* full = std::getenv("THALASSA_STRESS_FULL");
   const bool whole = full != nullptr && std::string(full) == "1";
@@ -92,11 +88,10 @@ TEST_P(Stress, RendersAFiniteImage) {
   } else {
     renders = {scene};
   }
-  auto context = test::make_test_context();
   for (const Scene& s : renders) {
-    Renderer renderer(*context, s);
+    Renderer renderer(context, s);
     const RenderStats stats = renderer.stats();
-    const std::string path = test::output_dir() + "/stress_" + GetParam() + ".exr";
+    const std::string path = test::output_dir() + "/stress_" + c.name + ".exr";
     write_exr(path, renderer.image(), s.image.exr_type);
     const Image image = read_image(path);
     std::filesystem::remove(path);
@@ -115,7 +110,7 @@ TEST_P(Stress, RendersAFiniteImage) {
       low = std::min(low, double(v));
       high = std::max(high, double(v));
     }
-    std::printf("stress %-34s %4dx%-4d %-7s min %.3g max %.3g non-finite %ld\n", GetParam().c_str(),
+    std::printf("stress %-34s %4dx%-4d %-7s min %.3g max %.3g non-finite %ld\n", c.name.c_str(),
                 s.image.width, s.image.height, stats.mode.c_str(), low, high, non_finite);
     EXPECT_EQ(non_finite, 0) << "pixels (channels) not finite";
     // Radiance is never negative either (a negative value is as wrong as a NaN).
@@ -123,9 +118,30 @@ TEST_P(Stress, RendersAFiniteImage) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, Stress, ::testing::ValuesIn(rendered_case_names()),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                           return info.param;
+// The cases are dealt round-robin to kShards tests (ctest entries), which ctest -j runs in
+// parallel: one process per shard rather than per case saves each case a process start (a GL
+// context, the atmosphere's tables loaded, the shaders compiled: about 0.5 s of CPU on llvmpipe).
+// THALASSA_STRESS_CASE=name renders that case only (in its shard), to debug one case.
+constexpr int kShards = 4;
+
+class Stress : public ::testing::TestWithParam<int> {};
+
+TEST_P(Stress, RendersFiniteImages) {
+  const char* only = std::getenv("THALASSA_STRESS_CASE");
+  auto context = test::make_test_context();
+  const std::vector<std::string> names = rendered_case_names();
+  ASSERT_FALSE(names.empty());
+  for (std::size_t i = GetParam(); i < names.size(); i += kShards) {
+    if (only != nullptr && names[i] != only) continue;
+    for (const SuiteCase& c : stress_suite().cases)
+      if (c.name == names[i]) check_case(*context, c);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Cases, Stress, ::testing::Range(0, kShards),
+                         [](const ::testing::TestParamInfo<int>& info) {
+                           return "shard_" + std::to_string(info.param) + "_of_" +
+                                  std::to_string(kShards);
                          });
 
 // Each light term alone (`thalassa render --terms sun`, ...; the energy checks render them so), at
