@@ -3,8 +3,10 @@
 // filtered fetch in the array's map of the point's own sun zenith, in the frame whose north is
 // the sun's azimuth at the point (the layers have the sun at azimuth 0). Shared by the view from
 // space (planet/ocean_space.frag) and by the projected grid as it hands over to it
-// (ocean/ocean_lighting.frag above kResolvedFadeStart). Needs SKY_MAP_ARRAY,
-// atmosphere/sky_provider.glsl and ocean/ross_brdf.glsl.
+// (ocean/ocean_lighting.frag above kResolvedFadeStart). Needs atmosphere/sky_provider.glsl and
+// ocean/ross_brdf.glsl; OceanSkyArrayReflection exists only with SKY_MAP_ARRAY (the array's
+// lookup in sky_provider.glsl), so that a shader without the sky term (and without the array,
+// which is then not built) can still use OceanTangentToward.
 #ifndef THALASSA_OCEAN_SKY_ARRAY_REFLECTION_GLSL
 #define THALASSA_OCEAN_SKY_ARRAY_REFLECTION_GLSL
 
@@ -18,6 +20,7 @@ vec3 OceanTangentToward(vec3 n, vec3 preferred, vec3 fallback) {
   return normalize(t);
 }
 
+#ifdef SKY_MAP_ARRAY
 // up: the sea's normal at rest at the point (its local vertical); v toward the eye; t_x, t_y, n
 // the shading tangent frame (Algorithm 5.1); sigma the slope standard deviations along t_x, t_y;
 // sun toward the sun. All unit vectors in one frame (the nadir frame).
@@ -30,4 +33,5 @@ vec3 OceanSkyArrayReflection(vec3 up, vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 s
   return SkyMapArrayRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y,
                                  SkyMapArrayLayer(dot(up, sun)));
 }
+#endif  // SKY_MAP_ARRAY
 #endif

@@ -8,3 +8,4 @@
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/engine/image.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/engine/suite.hpp"
