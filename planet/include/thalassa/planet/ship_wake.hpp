@@ -32,8 +32,9 @@ inline constexpr double kMaxTrackSegment = 1.0e7;
 class ShipWake {
  public:
   // Throws std::invalid_argument for a track with fewer than 2 points, times not strictly
-  // increasing, a segment longer than kMaxTrackSegment, a point out of range, a speed outside
-  // [0, 100] m/s or wake parameters kelvin_wake_at refuses.
+  // increasing, a segment longer than kMaxTrackSegment, a point out of range, a position form's
+  // speed outside [0, 100] m/s or wake parameters kelvin_wake_at refuses. (The scene checks a
+  // track's segment speeds, <= 100 m/s on a sphere; any finite speed works here.)
   ShipWake(const Planet& planet, const WakeSettings& settings);
   ~ShipWake();
   ShipWake(const ShipWake&);
