@@ -6,7 +6,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -283,6 +285,33 @@ TEST(SceneFeatures, AntimeridianAndPolarRingsAreAccepted) {
     {"polygon": [{"lat": 89, "lon": -180}, {"lat": 89, "lon": -60}, {"lat": 89, "lon": 60}]}]})",
               "s.json");
   EXPECT_EQ(b.build().calm_areas.size(), 2u);
+}
+
+// docs/scene.md has a row for every field, with the defaults of WakeSettings / CalmAreaSettings.
+TEST(SceneFeatures, DocumentedInDocsSceneMd) {
+  std::ifstream in(std::string(THALASSA_SOURCE_DIR) + "/docs/scene.md");
+  ASSERT_TRUE(in);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  const auto row = [&](const std::string& field) {
+    for (const auto& line : lines)
+      if (line.rfind("| `" + field + "` |", 0) == 0) return line;
+    ADD_FAILURE() << "docs/scene.md has no row for " << field;
+    return std::string();
+  };
+  const auto number = [](double x) {
+    std::ostringstream s;
+    s << x;
+    return "`" + s.str() + "`";
+  };
+  for (const char* f : {"name", "track", "lat", "lon", "heading", "speed", "time", "geojson"})
+    row(std::string("wakes[].") + f);
+  EXPECT_HAS(row("wakes[].amplitude"), number(WakeSettings{}.amplitude));
+  EXPECT_HAS(row("wakes[].draft"), number(WakeSettings{}.draft));
+  EXPECT_HAS(row("wakes[].length"), number(WakeSettings{}.length));
+  for (const char* f : {"name", "polygon", "holes", "geojson"}) row(std::string("calm_areas[].") + f);
+  EXPECT_HAS(row("calm_areas[].scale"), number(CalmAreaSettings{}.scale));
+  EXPECT_HAS(row("calm_areas[].fade"), number(CalmAreaSettings{}.fade));
 }
 
 }  // namespace

@@ -25,15 +25,16 @@
 // TRANSVERSE wave (t < 1/sqrt2; on the track t = 0 and lambda = 2 pi U^2 / g) and the DIVERGENT
 // wave (t > 1/sqrt2, shorter, its crests nearly along the track close to it).
 //
-// Amplitude of a branch: A(theta) sqrt(2 pi / |psi''|), psi'' = d2 psi / d theta2 =
+// Amplitude of a branch: A(theta) sqrt(2 pi / |psi''|) N, psi'' = d2 psi / d theta2 =
 // -k0 (b - 4 y t)(1 + t^2)^(3/2), with the source's amplitude density A(theta) = a_ref
-// exp(-k0 d t^2) (a source at depth d couples to a wave of wavenumber k as exp(-k d); k - k0 =
-// k0 t^2; the normalisation makes the transverse wave on the track one transverse wavelength
-// astern exactly a_ref high). Three regularisations keep every value finite (docs/wakes.md):
-// at the cusp |psi''| is replaced by sqrt(psi''^2 + R^2) with R from the Airy (caustic) scale;
-// outside the wedge both branches sit at the cusp and decay as exp(-2/3 z^(3/2)) (the Airy
-// function's tail); near the ship (b < lambda0) and at the wake's end the amplitude fades.
-// Each branch is then a trochoid of steepness k a clamped to kMaxTrochoidSteepness.
+// exp(-k0 d t^2) (a source at depth d couples to a wave of wavenumber k as exp(-k d), and
+// k - k0 = k0 t^2) and N the constant that makes the transverse wave on the track one transverse
+// wavelength astern exactly a_ref high. Three regularisations keep every value finite
+// (docs/wakes.md): at the cusp |psi''| is replaced by (psi''^4 + R^4)^(1/4) with R from the
+// Airy (caustic) scale; outside the wedge both branches sit at the cusp and decay as
+// exp(-2/3 z^(3/2)) (the Airy function's tail); near the ship (b < lambda0) and at the wake's end
+// the amplitude fades (C1 smoothsteps). Each branch is then a trochoid whose steepness k h is
+// clamped to kMaxTrochoidSteepness (wave_set.hpp).
 #pragma once
 
 #include <glm/glm.hpp>
