@@ -27,9 +27,9 @@ constexpr double kRad = std::numbers::pi / 180.0;
 constexpr double kMeanRadius = 6371008.8;
 // Limits (docs/scene.md): a track segment's length and speed, a calm area's extent from its
 // centre, the vertices of a ring and the points of a track.
-constexpr double kMaxSegment = 9.0e6;        // m
-constexpr double kMaxSpeed = 100.0;          // m/s
-constexpr double kMaxAreaRadius = 4.5e6;     // m
+constexpr double kMaxSegment = 9.0e6;     // m
+constexpr double kMaxSpeed = 100.0;       // m/s
+constexpr double kMaxAreaRadius = 4.5e6;  // m
 constexpr std::size_t kMaxRingVertices = 10000;
 constexpr std::size_t kMaxTrackPoints = 1000000;
 
@@ -56,7 +56,8 @@ std::string number_text(double x) {
                        const std::string& got) {
   std::string msg = std::string(source) + ": " + (key.empty() ? "" : key + ": ") + "expected " +
                     expected + ", got " + got;
-  std::replace_if(msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  std::replace_if(
+      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
   throw SceneError(msg);
 }
 
@@ -88,7 +89,8 @@ std::string rule_text(const NumberRule& r) {
 double number(const json& v, const Where& at, const NumberRule& r) {
   if (!v.is_number()) at.fail(rule_text(r), v);
   const double x = v.get<double>();
-  if (!std::isfinite(x) || x < r.lo || x > r.hi || (r.lo_open && x == r.lo)) at.fail(rule_text(r), v);
+  if (!std::isfinite(x) || x < r.lo || x > r.hi || (r.lo_open && x == r.lo))
+    at.fail(rule_text(r), v);
   return x;
 }
 
@@ -162,7 +164,8 @@ bool arcs_cross(Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
 }
 
 // The first pair of non-adjacent edges of a closed ring that cross, or nullopt.
-std::optional<std::pair<std::size_t, std::size_t>> self_crossing(const std::vector<GeoPoint>& ring) {
+std::optional<std::pair<std::size_t, std::size_t>> self_crossing(
+    const std::vector<GeoPoint>& ring) {
   const std::size_t n = ring.size();
   std::vector<Vec3> v;
   for (const GeoPoint& p : ring) v.push_back(unit(p.lat, p.lon));
@@ -183,7 +186,8 @@ std::string point_text(const GeoPoint& p) {
 // Checks of the typed values, shared by inline entries and GeoJSON features.
 
 void check_track(const std::vector<TrackPoint>& track, const Where& at) {
-  if (track.size() < 2) at.fail("a track of at least 2 points", "a track of " + std::to_string(track.size()));
+  if (track.size() < 2)
+    at.fail("a track of at least 2 points", "a track of " + std::to_string(track.size()));
   if (track.size() > kMaxTrackPoints)
     at.fail("at most 1000000 points", "a track of " + std::to_string(track.size()));
   for (std::size_t i = 1; i < track.size(); ++i) {
@@ -207,7 +211,8 @@ void check_track(const std::vector<TrackPoint>& track, const Where& at) {
 
 // Removes a repeated closing vertex (required when `closed_required`) and consecutive
 // duplicates, then checks the ring: at least 3 distinct vertices, no self-crossing.
-std::vector<GeoPoint> check_ring(std::vector<GeoPoint> ring, const Where& at, bool closed_required) {
+std::vector<GeoPoint> check_ring(std::vector<GeoPoint> ring, const Where& at,
+                                 bool closed_required) {
   if (closed_required) {
     if (ring.size() < 4)
       at.fail("a linear ring of at least 4 positions (the first repeated at the end)",
@@ -223,14 +228,15 @@ std::vector<GeoPoint> check_ring(std::vector<GeoPoint> ring, const Where& at, bo
     if (!clean.empty() && clean.back().lat == p.lat && clean.back().lon == p.lon) continue;
     clean.push_back(p);
   }
-  if (clean.size() > 1 && clean.front().lat == clean.back().lat && clean.front().lon == clean.back().lon)
+  if (clean.size() > 1 && clean.front().lat == clean.back().lat &&
+      clean.front().lon == clean.back().lon)
     clean.pop_back();
   if (clean.size() < 3)
     at.fail("a ring of at least 3 distinct vertices", "a ring of " + std::to_string(clean.size()));
   if (const auto crossing = self_crossing(clean)) {
-    at.fail("a ring that does not cross itself",
-            "edge " + std::to_string(crossing->first) + " crossing edge " +
-                std::to_string(crossing->second));
+    at.fail("a ring that does not cross itself", "edge " + std::to_string(crossing->first) +
+                                                     " crossing edge " +
+                                                     std::to_string(crossing->second));
   }
   return clean;
 }
@@ -243,7 +249,8 @@ void check_extent(const CalmAreaSettings& area, const Where& at) {
   }
   const double len = norm(mean);
   if (!(len > 1e-9 * static_cast<double>(area.exterior.size())))
-    at.fail("a polygon within 4500 km of its centre", std::string("vertices spread around the globe"));
+    at.fail("a polygon within 4500 km of its centre",
+            std::string("vertices spread around the globe"));
   const GeoPoint centre{std::asin(std::clamp(mean.z / len, -1.0, 1.0)) / kRad,
                         std::atan2(mean.y, mean.x) / kRad};
   for (const auto* ring : {&area.exterior}) {
@@ -268,7 +275,8 @@ json to_json(const WakeSettings& w) {
   j["name"] = w.name;
   if (!w.track.empty()) {
     json t = json::array();
-    for (const TrackPoint& p : w.track) t.push_back({{"lat", p.lat}, {"lon", p.lon}, {"time", p.time}});
+    for (const TrackPoint& p : w.track)
+      t.push_back({{"lat", p.lat}, {"lon", p.lon}, {"time", p.time}});
     j["track"] = std::move(t);
   } else {
     j["lat"] = w.lat;
@@ -307,8 +315,7 @@ json to_json(const CalmAreaSettings& a) {
 GeoPoint inline_point(const json& v, const Where& at) {
   if (!v.is_object()) at.fail("a point {\"lat\": ..., \"lon\": ...} (degrees)", v);
   only_keys(v, at, {"lat", "lon"}, "a point");
-  if (!v.contains("lat") || !v.contains("lon"))
-    at.fail("a point with both lat and lon", v);
+  if (!v.contains("lat") || !v.contains("lon")) at.fail("a point with both lat and lon", v);
   return {number(v["lat"], at / "lat", kLat), number(v["lon"], at / "lon", kLon)};
 }
 
@@ -360,10 +367,13 @@ std::vector<Feature> features_of(const json& doc, const std::string& file) {
     r.geometry = f.value("geometry", json());
     r.properties = f.value("properties", json::object());
     if (r.properties.is_null()) r.properties = json::object();
-    if (!r.properties.is_object()) fail(file, key + ".properties", "an object", describe(r.properties));
+    if (!r.properties.is_object())
+      fail(file, key + ".properties", "an object", describe(r.properties));
     const json name = r.properties.value("name", r.properties.value("id", f.value("id", json())));
-    if (name.is_string()) r.name = name.get<std::string>();
-    else if (name.is_number()) r.name = dump(name);
+    if (name.is_string())
+      r.name = name.get<std::string>();
+    else if (name.is_number())
+      r.name = dump(name);
     r.key = key + (r.name.empty() ? "" : " (\"" + r.name + "\")");
     out.push_back(std::move(r));
   };
@@ -392,7 +402,8 @@ GeoPoint position(const json& v, const Where& at) {
   for (const auto& x : v)
     if (!x.is_number()) at.fail("a position of numbers [lon, lat]", v);
   const double lon = v[0].get<double>(), lat = v[1].get<double>();
-  if (!std::isfinite(lon) || lon < -180 || lon > 180 || !std::isfinite(lat) || lat < -90 || lat > 90)
+  if (!std::isfinite(lon) || lon < -180 || lon > 180 || !std::isfinite(lat) || lat < -90 ||
+      lat > 90)
     at.fail("a position [lon, lat] with lon in [-180, 180] and lat in [-90, 90] degrees", v);
   return {lat, lon};
 }
@@ -414,7 +425,8 @@ double property(const json& props, const char* name, double fallback, const Wher
 // The defaults an entry gives to the features of its GeoJSON file.
 WakeSettings wake_defaults(const json& entry, const Where& at) {
   WakeSettings w;
-  if (entry.contains("amplitude")) w.amplitude = number(entry["amplitude"], at / "amplitude", kAmplitude);
+  if (entry.contains("amplitude"))
+    w.amplitude = number(entry["amplitude"], at / "amplitude", kAmplitude);
   if (entry.contains("draft")) w.draft = number(entry["draft"], at / "draft", kDraft);
   if (entry.contains("length")) w.length = number(entry["length"], at / "length", kLength);
   return w;
@@ -425,7 +437,8 @@ void wakes_from_geojson(const json& entry, std::string_view source, const Where&
   only_keys(entry, at, {"geojson", "amplitude", "draft", "length"}, "a wake read from GeoJSON");
   const WakeSettings defaults = wake_defaults(entry, at);
   std::string file;
-  const json doc = read_geojson(text(entry["geojson"], at / "geojson"), source, at / "geojson", file);
+  const json doc =
+      read_geojson(text(entry["geojson"], at / "geojson"), source, at / "geojson", file);
   for (const Feature& f : features_of(doc, file)) {
     const Where fa{file, f.key};
     WakeSettings w = defaults;
@@ -442,14 +455,16 @@ void wakes_from_geojson(const json& entry, std::string_view source, const Where&
       if (!coords.is_array()) (ga / "coordinates").fail("an array of positions", coords);
       const json times = props.value("times", json());
       if (!times.is_array())
-        (fa / "properties" / "times").fail("an array of times (s), one per position of the LineString", times);
+        (fa / "properties" / "times")
+            .fail("an array of times (s), one per position of the LineString", times);
       if (times.size() != coords.size())
         (fa / "properties" / "times")
             .fail("one time per position (" + std::to_string(coords.size()) + ")",
                   std::to_string(times.size()) + " times");
       for (std::size_t i = 0; i < coords.size(); ++i) {
         const GeoPoint p = position(coords[i], (ga / "coordinates")[i]);
-        w.track.push_back({p.lat, p.lon, number(times[i], (fa / "properties" / "times")[i], kTime)});
+        w.track.push_back(
+            {p.lat, p.lon, number(times[i], (fa / "properties" / "times")[i], kTime)});
       }
       check_track(w.track, ga / "coordinates");
     } else if (type == "Point") {
@@ -458,14 +473,16 @@ void wakes_from_geojson(const json& entry, std::string_view source, const Where&
       w.lon = p.lon;
       for (const char* key : {"heading", "speed"})
         if (!props.contains(key))
-          (fa / "properties" / key).fail(std::string("the ship's ") + key + " (a Point needs heading and speed)",
-                                        std::string("nothing"));
+          (fa / "properties" / key)
+              .fail(std::string("the ship's ") + key + " (a Point needs heading and speed)",
+                    std::string("nothing"));
       w.heading = number(props["heading"], fa / "properties" / "heading", kHeading);
       w.speed = number(props["speed"], fa / "properties" / "speed", kSpeed);
       w.time = property(props, "time", 0.0, fa, kTime);
     } else {
-      (ga / "type").fail("\"LineString\" (a track) or \"Point\" (a position with heading and speed)",
-                         g.is_object() ? g.value("type", json()) : g);
+      (ga / "type")
+          .fail("\"LineString\" (a track) or \"Point\" (a position with heading and speed)",
+                g.is_object() ? g.value("type", json()) : g);
     }
     out.push_back(std::move(w));
   }
@@ -478,7 +495,8 @@ void calm_areas_from_geojson(const json& entry, std::string_view source, const W
   if (entry.contains("scale")) defaults.scale = number(entry["scale"], at / "scale", kScale);
   if (entry.contains("fade")) defaults.fade = number(entry["fade"], at / "fade", kFade);
   std::string file;
-  const json doc = read_geojson(text(entry["geojson"], at / "geojson"), source, at / "geojson", file);
+  const json doc =
+      read_geojson(text(entry["geojson"], at / "geojson"), source, at / "geojson", file);
   for (const Feature& f : features_of(doc, file)) {
     const Where fa{file, f.key};
     CalmAreaSettings base = defaults;
@@ -490,20 +508,24 @@ void calm_areas_from_geojson(const json& entry, std::string_view source, const W
     const Where ga = fa / "geometry";
     const json coords = g.is_object() ? g.value("coordinates", json()) : json();
     auto polygon = [&](const json& rings, const Where& pa) {
-      if (!rings.is_array() || rings.empty()) pa.fail("an array of linear rings (exterior first)", rings);
+      if (!rings.is_array() || rings.empty())
+        pa.fail("an array of linear rings (exterior first)", rings);
       CalmAreaSettings a = base;
       a.exterior = geojson_ring(rings[0], pa[0]);
-      for (std::size_t i = 1; i < rings.size(); ++i) a.holes.push_back(geojson_ring(rings[i], pa[i]));
+      for (std::size_t i = 1; i < rings.size(); ++i)
+        a.holes.push_back(geojson_ring(rings[i], pa[i]));
       check_extent(a, pa);
       out.push_back(std::move(a));
     };
     if (type == "Polygon") {
       polygon(coords, ga / "coordinates");
     } else if (type == "MultiPolygon") {
-      if (!coords.is_array() || coords.empty()) (ga / "coordinates").fail("an array of polygons", coords);
+      if (!coords.is_array() || coords.empty())
+        (ga / "coordinates").fail("an array of polygons", coords);
       for (std::size_t i = 0; i < coords.size(); ++i) polygon(coords[i], (ga / "coordinates")[i]);
     } else {
-      (ga / "type").fail("\"Polygon\" or \"MultiPolygon\"", g.is_object() ? g.value("type", json()) : g);
+      (ga / "type")
+          .fail("\"Polygon\" or \"MultiPolygon\"", g.is_object() ? g.value("type", json()) : g);
     }
   }
 }
@@ -512,7 +534,8 @@ void calm_areas_from_geojson(const json& entry, std::string_view source, const W
 // [{"geojson": path}]).
 json entries(const json& value, const Where& at, const char* what) {
   if (value.is_string()) return json::array({{{"geojson", value}}});
-  if (!value.is_array()) at.fail(std::string("an array of ") + what + " (or a GeoJSON file's path)", value);
+  if (!value.is_array())
+    at.fail(std::string("an array of ") + what + " (or a GeoJSON file's path)", value);
   return value;
 }
 
@@ -531,8 +554,8 @@ json check_wakes(const json& value, std::string_view source, std::string_view ke
       continue;
     }
     only_keys(e, at,
-              {"name", "track", "lat", "lon", "time", "heading", "speed", "amplitude", "draft", "length",
-               "geojson"},
+              {"name", "track", "lat", "lon", "time", "heading", "speed", "amplitude", "draft",
+               "length", "geojson"},
               "a wake");
     WakeSettings w = wake_defaults(e, at);
     if (e.contains("name")) w.name = text(e["name"], at / "name");
@@ -540,16 +563,21 @@ json check_wakes(const json& value, std::string_view source, std::string_view ke
                                e.contains("speed") || e.contains("time");
     if (e.contains("track")) {
       if (position_form)
-        at.fail("either a track or a position (lat, lon, time, heading, speed)", std::string("both"));
+        at.fail("either a track or a position (lat, lon, time, heading, speed)",
+                std::string("both"));
       const json& t = e["track"];
       if (!t.is_array()) (at / "track").fail("an array of points {\"lat\", \"lon\", \"time\"}", t);
       for (std::size_t j = 0; j < t.size(); ++j) {
         const Where pa = (at / "track")[j];
-        if (!t[j].is_object()) pa.fail("a point {\"lat\", \"lon\", \"time\"} (degrees, degrees, s)", t[j]);
+        if (!t[j].is_object())
+          pa.fail("a point {\"lat\", \"lon\", \"time\"} (degrees, degrees, s)", t[j]);
         only_keys(t[j], pa, {"lat", "lon", "time"}, "a track point");
         for (const char* k : {"lat", "lon", "time"})
-          if (!t[j].contains(k)) (pa / k).fail("a number (a track point needs lat, lon and time)", std::string("nothing"));
-        w.track.push_back({number(t[j]["lat"], pa / "lat", kLat), number(t[j]["lon"], pa / "lon", kLon),
+          if (!t[j].contains(k))
+            (pa / k).fail("a number (a track point needs lat, lon and time)",
+                          std::string("nothing"));
+        w.track.push_back({number(t[j]["lat"], pa / "lat", kLat),
+                           number(t[j]["lon"], pa / "lon", kLon),
                            number(t[j]["time"], pa / "time", kTime)});
       }
       check_track(w.track, at / "track");
@@ -589,12 +617,15 @@ json check_calm_areas(const json& value, std::string_view source, std::string_vi
     CalmAreaSettings a;
     if (e.contains("name")) a.name = text(e["name"], at / "name");
     if (!e.contains("polygon"))
-      (at / "polygon").fail("the area's outline (an array of points {\"lat\", \"lon\"})", std::string("nothing"));
+      (at / "polygon")
+          .fail("the area's outline (an array of points {\"lat\", \"lon\"})",
+                std::string("nothing"));
     a.exterior = inline_ring(e["polygon"], at / "polygon");
     if (e.contains("holes")) {
       const json& h = e["holes"];
       if (!h.is_array()) (at / "holes").fail("an array of rings", h);
-      for (std::size_t j = 0; j < h.size(); ++j) a.holes.push_back(inline_ring(h[j], (at / "holes")[j]));
+      for (std::size_t j = 0; j < h.size(); ++j)
+        a.holes.push_back(inline_ring(h[j], (at / "holes")[j]));
     }
     if (e.contains("scale")) a.scale = number(e["scale"], at / "scale", kScale);
     if (e.contains("fade")) a.fade = number(e["fade"], at / "fade", kFade);
@@ -613,7 +644,8 @@ std::vector<WakeSettings> wakes_from(const json& canonical) {
     w.name = e.at("name").get<std::string>();
     if (e.contains("track")) {
       for (const json& p : e["track"])
-        w.track.push_back({p.at("lat").get<double>(), p.at("lon").get<double>(), p.at("time").get<double>()});
+        w.track.push_back(
+            {p.at("lat").get<double>(), p.at("lon").get<double>(), p.at("time").get<double>()});
     } else {
       w.lat = e.at("lat").get<double>();
       w.lon = e.at("lon").get<double>();

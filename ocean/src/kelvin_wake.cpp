@@ -28,8 +28,7 @@ void check(const KelvinWakeParams& p) {
   if (!std::isfinite(p.speed)) fail("speed (m/s)", p.speed, "a finite number");
   if (!std::isfinite(p.amplitude) || p.amplitude < 0.0)
     fail("amplitude (m)", p.amplitude, "a finite number >= 0");
-  if (!std::isfinite(p.draft) || p.draft <= 0.0)
-    fail("draft (m)", p.draft, "a finite number > 0");
+  if (!std::isfinite(p.draft) || p.draft <= 0.0) fail("draft (m)", p.draft, "a finite number > 0");
   if (!std::isfinite(p.length) || p.length <= 0.0)
     fail("length (m)", p.length, "a finite number > 0");
 }
@@ -182,9 +181,9 @@ KelvinWakeSample kelvin_wake_at(const KelvinWakeParams& params, double behind, d
   const double tau = y / behind;
   // Fades: in from the ship over one transverse wavelength (the far-field form is not valid
   // nearer), out over the last kWakeTailFraction of the length.
-  const double fade = smoothstep(0.0, lambda0, behind) *
-                      (1.0 - smoothstep((1.0 - kWakeTailFraction) * params.length, params.length,
-                                        behind));
+  const double fade =
+      smoothstep(0.0, lambda0, behind) *
+      (1.0 - smoothstep((1.0 - kWakeTailFraction) * params.length, params.length, behind));
   if (fade == 0.0) return out;  // also keeps b^(-1/2) from overflowing for a denormal b
   const double third = cusp_third_derivative(k0, behind);
   const double regularisation = cusp_regularisation(k0, behind);
@@ -197,7 +196,8 @@ KelvinWakeSample kelvin_wake_at(const KelvinWakeParams& params, double behind, d
         branch(params, k0, roots.transverse, behind, y, sign, -kOffset, regularisation, fade);
     // Past t ~ 30 the source term exp(-k0 d t^2) is below 1e-300 for any wake worth drawing;
     // the root itself is +inf on the track.
-    if (std::isfinite(roots.divergent) && k0 * params.draft * roots.divergent * roots.divergent < 700.0) {
+    if (std::isfinite(roots.divergent) &&
+        k0 * params.draft * roots.divergent * roots.divergent < 700.0) {
       out.divergent =
           branch(params, k0, roots.divergent, behind, y, sign, kOffset, regularisation, fade);
     }
@@ -232,8 +232,8 @@ double kelvin_wake_half_width(const KelvinWakeParams& params) {
   if (k0 == 0.0 || params.amplitude == 0.0) return 0.0;
   const double b = params.length;
   // z = k0 b sqrt(3/2) 2 dtau / (psi'''/2)^(1/3) = kWakeAiryCutoff at the tail's end.
-  const double dtau =
-      kWakeAiryCutoff * std::cbrt(0.5 * cusp_third_derivative(k0, b)) / (2.0 * std::sqrt(1.5) * k0 * b);
+  const double dtau = kWakeAiryCutoff * std::cbrt(0.5 * cusp_third_derivative(k0, b)) /
+                      (2.0 * std::sqrt(1.5) * k0 * b);
   return b * (kKelvinTanHalfAngle + dtau);
 }
 

@@ -78,7 +78,8 @@ GeoBounds GeoBounds::from_arcs(double south, double north,
   r.north = north;
   if (arcs.empty()) return GeoBounds{};
   // Sort by start in [-180, 180), merge, and find the largest gap between merged arcs.
-  std::vector<std::pair<double, double>> s;  // [start, end] with end = start + length (may pass 180)
+  std::vector<std::pair<double, double>>
+      s;  // [start, end] with end = start + length (may pass 180)
   for (const auto& [start, length] : arcs) {
     if (length >= 360.0) {
       r.west = -180.0;

@@ -89,8 +89,10 @@ void segment_extent(const GeographicLib::Geodesic& g, double lat_a, double lon_a
     const double sin0 = std::cos(beta1) * std::sin(azi1 / kDegrees);
     const double beta_max = std::acos(std::min(1.0, std::abs(sin0)));
     const double lat_max = std::atan(std::tan(beta_max) / (1.0 - f)) * kDegrees;
-    if (c1 > 0.0) north = std::max(north, lat_max);
-    else south = std::min(south, -lat_max);
+    if (c1 > 0.0)
+      north = std::max(north, lat_max);
+    else
+      south = std::min(south, -lat_max);
   }
   const double dlon = std::remainder(lon_b - lon_a, 360.0);  // [-180, 180]
   if (std::sin(azi1 / kDegrees) >= 0.0) {

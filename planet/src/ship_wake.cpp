@@ -52,8 +52,7 @@ struct ShipWake::Impl {
     out.clear();
     out.push_back({st.lat, st.lon});
     if (s.track.empty()) {
-      const GeographicLib::GeodesicLine line =
-          geodesic.Line(st.lat, st.lon, st.heading + 180.0);
+      const GeographicLib::GeodesicLine line = geodesic.Line(st.lat, st.lon, st.heading + 180.0);
       double lat, lon;
       line.Position(length, lat, lon);
       out.push_back({lat, lon});

@@ -56,8 +56,10 @@ double BruteDistance(const GeographicLib::Geodesic& g, GeoPoint a, GeoPoint b, G
   const double r = (std::sqrt(5.0) - 1) / 2;
   for (int it = 0; it < 200 && hi - lo > 1e-9; ++it) {
     const double m1 = hi - r * (hi - lo), m2 = lo + r * (hi - lo);
-    if (dist(m1) < dist(m2)) hi = m2;
-    else lo = m1;
+    if (dist(m1) < dist(m2))
+      hi = m2;
+    else
+      lo = m1;
   }
   return std::min(best_d, dist(0.5 * (lo + hi)));
 }
@@ -83,7 +85,7 @@ TEST(CalmArea, ContainsPointsKnownInsideAndOutside) {
   EXPECT_FALSE(area.contains(20.0, -150.0));    // in the hole
   EXPECT_FALSE(area.contains(20.011, -150.0));  // in the hole
   EXPECT_FALSE(area.contains(20.2, -150.0));
-  EXPECT_FALSE(area.contains(-20.0, 30.0));     // the far side of the globe
+  EXPECT_FALSE(area.contains(-20.0, 30.0));  // the far side of the globe
   EXPECT_FALSE(area.contains(std::nan(""), 0.0));
   EXPECT_EQ(area.amplitude_scale(20.2, -150.0), 1.0);
   EXPECT_EQ(area.amplitude_scale(20.0, -150.0), 1.0);

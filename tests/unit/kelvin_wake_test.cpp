@@ -131,8 +131,7 @@ TEST(KelvinWake, BranchesAreStationaryPointsOfThePhase) {
       for (int i = 1; i < n; ++i) {
         const double theta = -kPi / 2 + kPi * i / n;
         const double h = 1e-7;
-        const double d =
-            kelvin_phase(k0, theta + h, b, y) - kelvin_phase(k0, theta - h, b, y);
+        const double d = kelvin_phase(k0, theta + h, b, y) - kelvin_phase(k0, theta - h, b, y);
         if (i > 1 && (d > 0) != (prev > 0)) ++sign_changes;
         prev = d;
       }
@@ -159,15 +158,17 @@ TEST(KelvinWake, EachBranchObeysTheDispersionRelationLocally) {
         const KelvinWakeSample sb1 = kelvin_wake_at(p, b + h, y), sb0 = kelvin_wake_at(p, b - h, y);
         const KelvinWakeSample sy1 = kelvin_wake_at(p, b, y + h), sy0 = kelvin_wake_at(p, b, y - h);
         const auto check = [&](const WakeWave& w, auto member) {
-          const double db = PhaseDifference((sb1.*member).argument, (sb0.*member).argument) / (2 * h);
-          const double dy = PhaseDifference((sy1.*member).argument, (sy0.*member).argument) / (2 * h);
+          const double db =
+              PhaseDifference((sb1.*member).argument, (sb0.*member).argument) / (2 * h);
+          const double dy =
+              PhaseDifference((sy1.*member).argument, (sy0.*member).argument) / (2 * h);
           const double k = w.wavenumber;
-          worst_gradient = std::max(
-              {worst_gradient, std::abs(db - w.wave_vector.x) / k, std::abs(dy + w.wave_vector.y) / k});
+          worst_gradient = std::max({worst_gradient, std::abs(db - w.wave_vector.x) / k,
+                                     std::abs(dy + w.wave_vector.y) / k});
           // d theta_w / dt at a fixed point = U d theta_w / db.
           const double omega = speed * db;
-          worst_frequency =
-              std::max(worst_frequency, std::abs(omega - std::sqrt(kGravity * k)) / w.angular_frequency);
+          worst_frequency = std::max(
+              worst_frequency, std::abs(omega - std::sqrt(kGravity * k)) / w.angular_frequency);
           EXPECT_NEAR(w.angular_frequency, std::sqrt(kGravity * k), 1e-12 * w.angular_frequency);
           // Phase speed = U cos(theta): the waves keep pace with the ship.
           EXPECT_NEAR(w.angular_frequency / k, speed * std::cos(w.angle), 1e-12 * speed);
@@ -250,21 +251,25 @@ TEST(KelvinWake, SlopeVarianceIsTheMeanSquaredSlopeOfTheSurface) {
         reported += s.slope_variance({1.0, 0.0}).total() * det;
         // Linear waves: z = sum h cos(theta_w) over the rest plane, variance (k h)^2 / 2.
         const double lz_e = -(kelvin_wake_at(p, b + h, y).linear_height() -
-                              kelvin_wake_at(p, b - h, y).linear_height()) / (2 * h);
+                              kelvin_wake_at(p, b - h, y).linear_height()) /
+                            (2 * h);
         const double lz_n = (kelvin_wake_at(p, b, y + h).linear_height() -
-                             kelvin_wake_at(p, b, y - h).linear_height()) / (2 * h);
+                             kelvin_wake_at(p, b, y - h).linear_height()) /
+                            (2 * h);
         linear_sum += lz_e * lz_e + lz_n * lz_n;
         for (const WakeWave* w : {&s.transverse, &s.divergent})
           linear_reported += 0.5 * std::pow(w->wavenumber * w->amplitude, 2);
       }
     }
     const double brute = trochoid_sum / area, model = reported / area;
-    const double linear_brute = linear_sum / (double(n) * n), linear_model = linear_reported / (double(n) * n);
-    std::printf("U %.1f, a_ref %.1f, %.0f lambda0 astern at %.0f deg: trochoids brute %.6g model %.6g "
-                "(%.2f %%); linear brute %.6g model %.6g (%.2f %%); %d^2 points\n",
-                patch.speed, patch.amplitude, patch.b_over_lambda0, patch.angle_deg, brute, model,
-                100 * (model / brute - 1), linear_brute, linear_model,
-                100 * (linear_model / linear_brute - 1), n);
+    const double linear_brute = linear_sum / (double(n) * n),
+                 linear_model = linear_reported / (double(n) * n);
+    std::printf(
+        "U %.1f, a_ref %.1f, %.0f lambda0 astern at %.0f deg: trochoids brute %.6g model %.6g "
+        "(%.2f %%); linear brute %.6g model %.6g (%.2f %%); %d^2 points\n",
+        patch.speed, patch.amplitude, patch.b_over_lambda0, patch.angle_deg, brute, model,
+        100 * (model / brute - 1), linear_brute, linear_model,
+        100 * (linear_model / linear_brute - 1), n);
     EXPECT_GT(brute, 0.0);
     EXPECT_NEAR(model / brute, 1.0, 0.01);
     EXPECT_NEAR(linear_model / linear_brute, 1.0, 0.01);
@@ -367,8 +372,8 @@ TEST(KelvinWake, FiniteForSpeedZeroAndExtremeInputs) {
             for (double y : {0.0, -tiny, 1e-3, -3.0, 50.0, 1e5, -big, inf, nan}) {
               const KelvinWakeSample s = kelvin_wake_at(p, b, y);
               ASSERT_TRUE(Finite(s.transverse) && Finite(s.divergent))
-                  << speed << " " << draft << " " << amplitude << " " << length << " " << b
-                  << " " << y;
+                  << speed << " " << draft << " " << amplitude << " " << length << " " << b << " "
+                  << y;
               ASSERT_TRUE(std::isfinite(s.slope_variance({0.3, 0.4}).total()));
               ASSERT_TRUE(std::isfinite(s.linear_height()));
               ASSERT_LE(s.transverse.wavenumber * s.transverse.amplitude,

@@ -40,9 +40,10 @@ std::string error_of_text(const std::string& text, const std::string& source = "
 struct TempDir {
   fs::path path;
   TempDir() {
-    path = fs::temp_directory_path() /
-           ("thalassa_features_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    path =
+        fs::temp_directory_path() /
+        ("thalassa_features_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
+         "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::create_directories(path);
   }
   ~TempDir() {
@@ -134,8 +135,8 @@ TEST(SceneFeatures, GeoJsonFilesRelativeToTheScene) {
   ASSERT_EQ(s.wakes[0].track.size(), 3u);
   EXPECT_EQ(s.wakes[0].track[1].lat, 43.285);
   EXPECT_EQ(s.wakes[0].track[2].time, 250.0);
-  EXPECT_EQ(s.wakes[0].draft, 4.0);       // the feature's property
-  EXPECT_EQ(s.wakes[0].amplitude, 0.8);   // the entry's default
+  EXPECT_EQ(s.wakes[0].draft, 4.0);      // the feature's property
+  EXPECT_EQ(s.wakes[0].amplitude, 0.8);  // the entry's default
   EXPECT_EQ(s.wakes[1].name, "7");
   EXPECT_EQ(s.wakes[1].lon, 179.99);
   EXPECT_EQ(s.wakes[1].heading, 270.0);
@@ -153,12 +154,13 @@ TEST(SceneFeatures, GeoJsonFilesRelativeToTheScene) {
 
 TEST(SceneFeatures, BadGeometryIsRefusedNamingTheFeature) {
   const TempDir dir;
-  const auto geojson_error = [&](const std::string& geometry, const std::string& properties =
-                                                                   R"({"name": "bad one"})") {
+  const auto geojson_error = [&](const std::string& geometry,
+                                 const std::string& properties = R"({"name": "bad one"})") {
     dir.write("f.geojson", R"({"type": "FeatureCollection", "features": [
       {"type": "Feature", "properties": {"name": "fine", "times": [0, 10]},
        "geometry": {"type": "LineString", "coordinates": [[0, 0], [0.001, 0]]}},
-      {"type": "Feature", "properties": )" + properties + R"(, "geometry": )" + geometry + "}]}");
+      {"type": "Feature", "properties": )" +
+                               properties + R"(, "geometry": )" + geometry + "}]}");
     const std::string scene = dir.write("s.json", R"({"wakes": [{"geojson": "f.geojson"}]})");
     std::string msg;
     try {
@@ -172,27 +174,35 @@ TEST(SceneFeatures, BadGeometryIsRefusedNamingTheFeature) {
   };
   const std::string file = (dir.path / "f.geojson").string();
   // Non-increasing times (feature 1 is the bad one; feature 0 is fine).
-  std::string m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0], [0.002, 0]]})",
-                                R"({"name": "bad one", "times": [0, 10, 10]})");
-  EXPECT_HAS(m, file + ": features[1] (\"bad one\").geometry.coordinates[2]: expected a time later than");
+  std::string m =
+      geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0], [0.002, 0]]})",
+                    R"({"name": "bad one", "times": [0, 10, 10]})");
+  EXPECT_HAS(
+      m, file + ": features[1] (\"bad one\").geometry.coordinates[2]: expected a time later than");
   EXPECT_HAS(m, "got 10 s");
   // Too few points.
-  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0]]})", R"({"name": "bad one", "times": [0]})");
-  EXPECT_HAS(m, "features[1] (\"bad one\").geometry.coordinates: expected a track of at least 2 points");
+  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0]]})",
+                    R"({"name": "bad one", "times": [0]})");
+  EXPECT_HAS(
+      m, "features[1] (\"bad one\").geometry.coordinates: expected a track of at least 2 points");
   // Times missing or of the wrong count.
-  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0]]})", R"({"id": "x"})");
+  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0]]})",
+                    R"({"id": "x"})");
   EXPECT_HAS(m, "features[1] (\"x\").properties.times: expected an array of times");
   // Latitude out of range ([lon, lat] order).
   m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 91]]})",
                     R"({"name": "bad one", "times": [0, 10]})");
-  EXPECT_HAS(m, "features[1] (\"bad one\").geometry.coordinates[1]: expected a position [lon, lat] with lon in");
+  EXPECT_HAS(m,
+             "features[1] (\"bad one\").geometry.coordinates[1]: expected a position [lon, lat] "
+             "with lon in");
   // A ship faster than 100 m/s.
   m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [1, 0]]})",
                     R"({"name": "bad one", "times": [0, 10]})");
   EXPECT_HAS(m, "coordinates[1]: expected a ship speed from point 0 of at most 100 m/s");
   // A polygon among wakes.
   m = geojson_error(R"({"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]})");
-  EXPECT_HAS(m, "features[1] (\"bad one\").geometry.type: expected \"LineString\" (a track) or \"Point\"");
+  EXPECT_HAS(
+      m, "features[1] (\"bad one\").geometry.type: expected \"LineString\" (a track) or \"Point\"");
 
   // Calm areas.
   const auto area_error = [&](const std::string& coordinates) {
@@ -200,7 +210,8 @@ TEST(SceneFeatures, BadGeometryIsRefusedNamingTheFeature) {
       {"type": "Feature", "properties": {"name": "ok"}, "geometry": {"type": "Polygon",
        "coordinates": [[[0, 0], [0.1, 0], [0.1, 0.1], [0, 0]]]}},
       {"type": "Feature", "properties": {"name": "slick B"}, "geometry": {"type": "Polygon",
-       "coordinates": )" + coordinates + "}}]}");
+       "coordinates": )" + coordinates +
+                               "}}]}");
     const std::string scene = dir.write("s2.json", R"({"calm_areas": [{"geojson": "a.geojson"}]})");
     std::string msg;
     try {
@@ -214,14 +225,18 @@ TEST(SceneFeatures, BadGeometryIsRefusedNamingTheFeature) {
   };
   const std::string afile = (dir.path / "a.geojson").string();
   m = area_error("[[[0, 0], [1, 0], [1, 1], [0, 1]]]");
-  EXPECT_HAS(m, afile + ": features[1] (\"slick B\").geometry.coordinates[0]: expected a closed ring");
+  EXPECT_HAS(m,
+             afile + ": features[1] (\"slick B\").geometry.coordinates[0]: expected a closed ring");
   m = area_error("[[[0, 0], [1, 0], [0, 0]]]");
   EXPECT_HAS(m, "coordinates[0]: expected a linear ring of at least 4 positions");
   m = area_error("[[[0, 0], [1, 0], [1, 0], [0, 0]]]");
   EXPECT_HAS(m, "expected a ring of at least 3 distinct vertices");
   m = area_error("[[[0, 0], [1, 1], [1, 0], [0, 1], [0, 0]]]");  // a bow tie
-  EXPECT_HAS(m, "coordinates[0]: expected a ring that does not cross itself, got edge 0 crossing edge 2");
-  m = area_error("[[[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]], [[0.2, 0.2], [0.4, 0.2], [0.3, \"x\"], [0.2, 0.2]]]");
+  EXPECT_HAS(
+      m, "coordinates[0]: expected a ring that does not cross itself, got edge 0 crossing edge 2");
+  m = area_error(
+      "[[[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]], [[0.2, 0.2], [0.4, 0.2], [0.3, \"x\"], [0.2, "
+      "0.2]]]");
   EXPECT_HAS(m, "coordinates[1][2]: expected a position of numbers");
   m = area_error("[[[-40, -40], [0, 60], [40, -40], [-40, -40]]]");
   EXPECT_HAS(m, "expected a polygon within 4500 km of its centre");
@@ -245,29 +260,35 @@ TEST(SceneFeatures, BadInlineEntries) {
   EXPECT_EQ(error_of_text(R"({"wakes": [{"lat": 1, "lon": 0, "speed": 3}]})"),
             "s.json: wakes[0].heading: expected a number (a ship given by position needs lat, "
             "lon, heading and speed), got nothing");
-  EXPECT_HAS(error_of_text(R"({"wakes": [{"lat": 1, "lon": 0, "heading": 0, "speed": 3, "sped": 1}]})"),
-             "s.json: wakes[0].sped: expected a known key of a wake (name, track, lat, lon");
+  EXPECT_HAS(
+      error_of_text(R"({"wakes": [{"lat": 1, "lon": 0, "heading": 0, "speed": 3, "sped": 1}]})"),
+      "s.json: wakes[0].sped: expected a known key of a wake (name, track, lat, lon");
   EXPECT_HAS(error_of_text(R"({"wakes": [{"track": [], "lat": 1}]})"),
              "s.json: wakes[0]: expected either a track or a position");
-  EXPECT_EQ(error_of_text(R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 0, "lon": 1}]}]})"),
+  EXPECT_EQ(error_of_text(
+                R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 0, "lon": 1}]}]})"),
             "s.json: calm_areas[0].polygon: expected a ring of at least 3 distinct vertices, got a "
             "ring of 2");
-  EXPECT_EQ(error_of_text(R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 1, "lon": 1},
+  EXPECT_EQ(
+      error_of_text(R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 1, "lon": 1},
                                                           {"lat": 0, "lon": 1}, {"lat": 1, "lon": 0}]}]})"),
-            "s.json: calm_areas[0].polygon: expected a ring that does not cross itself, got edge "
-            "0 crossing edge 2");
-  EXPECT_EQ(error_of_text(R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 0, "lon": 1},
+      "s.json: calm_areas[0].polygon: expected a ring that does not cross itself, got edge "
+      "0 crossing edge 2");
+  EXPECT_EQ(
+      error_of_text(R"({"calm_areas": [{"polygon": [{"lat": 0, "lon": 0}, {"lat": 0, "lon": 1},
                                                           {"lat": 1, "lon": 1}], "scale": 2}]})"),
-            "s.json: calm_areas[0].scale: expected a number in [0, 1], got 2");
+      "s.json: calm_areas[0].scale: expected a number in [0, 1], got 2");
   EXPECT_EQ(error_of_text(R"({"calm_areas": [{"geojson": "nowhere.geojson"}]})", "dir/s.json"),
             "dir/s.json: calm_areas[0].geojson: expected a GeoJSON file, got no such file "
             "\"dir/nowhere.geojson\"");
-  EXPECT_EQ(error_of_text(R"({"calm_area": []})"),
-            "s.json: calm_area: expected a known key (did you mean calm_areas?), got an unknown key");
+  EXPECT_EQ(
+      error_of_text(R"({"calm_area": []})"),
+      "s.json: calm_area: expected a known key (did you mean calm_areas?), got an unknown key");
   // Inside a flight's scene the key path has the prefix.
   try {
     SceneBuilder b;
-    b.load_text(R"({"wakes": [{"lat": 95, "lon": 0, "heading": 0, "speed": 3}]})", "f.json", "scene.");
+    b.load_text(R"({"wakes": [{"lat": 95, "lon": 0, "heading": 0, "speed": 3}]})", "f.json",
+                "scene.");
     ADD_FAILURE();
   } catch (const SceneError& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -309,7 +330,8 @@ TEST(SceneFeatures, DocumentedInDocsSceneMd) {
   EXPECT_HAS(row("wakes[].amplitude"), number(WakeSettings{}.amplitude));
   EXPECT_HAS(row("wakes[].draft"), number(WakeSettings{}.draft));
   EXPECT_HAS(row("wakes[].length"), number(WakeSettings{}.length));
-  for (const char* f : {"name", "polygon", "holes", "geojson"}) row(std::string("calm_areas[].") + f);
+  for (const char* f : {"name", "polygon", "holes", "geojson"})
+    row(std::string("calm_areas[].") + f);
   EXPECT_HAS(row("calm_areas[].scale"), number(CalmAreaSettings{}.scale));
   EXPECT_HAS(row("calm_areas[].fade"), number(CalmAreaSettings{}.fade));
 }

@@ -64,8 +64,8 @@ TEST(ShipWake, TrackIsInterpolatedAlongGeodesicsByTime) {
       double from_a, to_b, azi_a, azi_at;
       g.Inverse(a.lat, a.lon, st.lat, st.lon, from_a, azi_a, azi_at);
       g.Inverse(st.lat, st.lon, b.lat, b.lon, to_b);
-      EXPECT_NEAR(from_a, f * len, 1e-6);           // covered the fraction f of the segment
-      EXPECT_NEAR(from_a + to_b, len, 1e-6);        // on the geodesic
+      EXPECT_NEAR(from_a, f * len, 1e-6);     // covered the fraction f of the segment
+      EXPECT_NEAR(from_a + to_b, len, 1e-6);  // on the geodesic
       EXPECT_NEAR(st.speed, len / (b.time - a.time), 1e-9);
       EXPECT_NEAR(std::remainder(st.heading - azi_at, 360.0), 0.0, 1e-7);
     }
@@ -117,11 +117,15 @@ void ExpectCoordinatesRoundTrip(double lat, double lon, double heading, double s
   EXPECT_EQ(wake.sample(alat, alon, time).transverse.amplitude, 0.0);
 }
 
-TEST(ShipWake, CoordinatesRoundTripAtMidLatitude) { ExpectCoordinatesRoundTrip(43.3, 5.3, 210.0, 8.0); }
+TEST(ShipWake, CoordinatesRoundTripAtMidLatitude) {
+  ExpectCoordinatesRoundTrip(43.3, 5.3, 210.0, 8.0);
+}
 TEST(ShipWake, CoordinatesRoundTripAcrossTheAntimeridian) {
   ExpectCoordinatesRoundTrip(-12.0, 179.99, 95.0, 12.0);  // sails east across 180
 }
-TEST(ShipWake, CoordinatesRoundTripNearAPole) { ExpectCoordinatesRoundTrip(89.95, 30.0, 10.0, 6.0); }
+TEST(ShipWake, CoordinatesRoundTripNearAPole) {
+  ExpectCoordinatesRoundTrip(89.95, 30.0, 10.0, 6.0);
+}
 
 TEST(ShipWake, WakeFollowsATurningTrack) {
   const Planet planet;

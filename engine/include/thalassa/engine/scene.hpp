@@ -109,16 +109,16 @@ struct TrackPoint {
 // first and the last time) or, with `track` empty, a position, heading and speed (the ship is at
 // lat/lon at `time` and sails the geodesic of that initial heading at that speed, forever).
 struct WakeSettings {
-  std::string name;                // from the entry or the GeoJSON feature; may be empty
-  std::vector<TrackPoint> track;   // the track form; empty for the position form
-  double lat = 0.0;                // position form: degrees, [-90, 90]
-  double lon = 0.0;                // position form: degrees, [-180, 180]
-  double time = 0.0;               // position form: s, when the ship is at lat/lon
-  double heading = 0.0;            // position form: degrees clockwise from north, [-360, 360]
-  double speed = 0.0;              // position form: m/s, [0, 100]
-  double amplitude = 0.3;          // m, [0, 10]: transverse wave amplitude one wavelength astern
-  double draft = 3.0;              // m, (0, 100]: depth of the equivalent source
-  double length = 3000.0;          // m, (0, 1e6]: how far astern the wake reaches
+  std::string name;               // from the entry or the GeoJSON feature; may be empty
+  std::vector<TrackPoint> track;  // the track form; empty for the position form
+  double lat = 0.0;               // position form: degrees, [-90, 90]
+  double lon = 0.0;               // position form: degrees, [-180, 180]
+  double time = 0.0;              // position form: s, when the ship is at lat/lon
+  double heading = 0.0;           // position form: degrees clockwise from north, [-360, 360]
+  double speed = 0.0;             // position form: m/s, [0, 100]
+  double amplitude = 0.3;         // m, [0, 10]: transverse wave amplitude one wavelength astern
+  double draft = 3.0;             // m, (0, 100]: depth of the equivalent source
+  double length = 3000.0;         // m, (0, 1e6]: how far astern the wake reaches
 };
 
 // A calm area: a polygon (an exterior ring and holes, each at least 3 distinct vertices, the
@@ -128,7 +128,7 @@ struct CalmAreaSettings {
   std::string name;
   std::vector<GeoPoint> exterior;
   std::vector<std::vector<GeoPoint>> holes;
-  double scale = 0.2;  // amplitude factor inside, [0, 1]
+  double scale = 0.2;   // amplitude factor inside, [0, 1]
   double fade = 100.0;  // m, [0, 1e6]: the factor is reached this far inside the edge
 };
 

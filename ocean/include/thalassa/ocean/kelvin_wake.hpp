@@ -66,25 +66,25 @@ inline constexpr double kMinimumWakeSpeed = 0.2312;
 
 // A ship's wake parameters (scene key wakes[], docs/scene.md).
 struct KelvinWakeParams {
-  double speed = 0.0;        // U, m/s; the wake is empty below kMinimumWakeSpeed
-  double amplitude = 0.3;    // a_ref, m: transverse wave amplitude on the track lambda0 astern
-  double draft = 3.0;        // d, m (> 0): depth of the equivalent source; damps short waves
-  double length = 3000.0;    // m: how far astern the wake reaches (its end fades out)
+  double speed = 0.0;      // U, m/s; the wake is empty below kMinimumWakeSpeed
+  double amplitude = 0.3;  // a_ref, m: transverse wave amplitude on the track lambda0 astern
+  double draft = 3.0;      // d, m (> 0): depth of the equivalent source; damps short waves
+  double length = 3000.0;  // m: how far astern the wake reaches (its end fades out)
 };
 
 // One branch of the pattern at a point: locally a trochoid (paper eq. 2) with these values.
 struct WakeWave {
-  double angle = 0.0;               // theta, rad: direction of k from the course, (-pi/2, pi/2)
-  glm::dvec2 wave_vector{0.0};      // k, rad/m, ship frame (e, n components); 0 when empty
-  double wavenumber = 0.0;          // |k| = k0 sec^2 theta, rad/m
-  double wavelength = 0.0;          // 2 pi / |k|, m (0 when the wake is empty)
-  double angular_frequency = 0.0;   // sqrt(g |k|) = k.(U e), rad/s
-  double amplitude = 0.0;           // h, m, after the fades and the steepness clamp
+  double angle = 0.0;              // theta, rad: direction of k from the course, (-pi/2, pi/2)
+  glm::dvec2 wave_vector{0.0};     // k, rad/m, ship frame (e, n components); 0 when empty
+  double wavenumber = 0.0;         // |k| = k0 sec^2 theta, rad/m
+  double wavelength = 0.0;         // 2 pi / |k|, m (0 when the wake is empty)
+  double angular_frequency = 0.0;  // sqrt(g |k|) = k.(U e), rad/s
+  double amplitude = 0.0;          // h, m, after the fades and the steepness clamp
   // The trochoid's argument theta_w = omega t - k.p + phi at this point (shaders/ocean/
   // trochoids.glsl: displacement [k/|k| h sin theta_w, h cos theta_w]), wrapped to [0, 2 pi):
   // -(psi(theta) + sign(psi'') pi/4), stationary in the ship frame.
   double argument = 0.0;
-  bool clamped = false;             // the steepness clamp lowered the amplitude
+  bool clamped = false;  // the steepness clamp lowered the amplitude
   // Slope variance of this trochoid per unit horizontal area (Appendix A), dimensionless, for the
   // amplitude weighted by `weight` (w_r of eq. 4; 1 = all of it): 1 - sqrt(1 - (k w h)^2).
   double slope_variance(double weight = 1.0) const;
