@@ -21,6 +21,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "scene_features.hpp"
+
 namespace thalassa {
 namespace {
 
@@ -297,6 +299,9 @@ void put_path(json& doc, std::string_view path, json v) {
   }
 }
 
+// The top-level keys that hold arrays of features (issue 9) rather than one value each.
+bool is_feature_key(std::string_view name) { return name == "wakes" || name == "calm_areas"; }
+
 bool is_section(std::string_view name) {
   return std::any_of(key_table().begin(), key_table().end(),
                      [&](const KeyDesc& k) { return section_of(k.path) == name; });
@@ -423,6 +428,8 @@ std::string suggestion(std::string_view unknown) {
       best = candidate;
     }
   };
+  for (std::string_view feature : {"wakes", "calm_areas"})
+    consider(feature, edit_distance(unknown, feature));
   for (const auto& k : key_table()) {
     consider(k.path, edit_distance(unknown, k.path));
     // "height" at the top level is most likely camera.height put in the wrong place.
@@ -657,6 +664,15 @@ struct SceneBuilder::Impl {
       if (explicit_input) staged_given[std::string(k.path)] = {std::string(source), next_order};
     };
     for (const auto& [name, value] : doc.items()) {
+      if (is_feature_key(name)) {
+        // Arrays of wakes / calm areas (scene_features.hpp): checked, GeoJSON files read, kept
+        // in canonical form.
+        staged_values[name] = name == "wakes"
+                                  ? detail::check_wakes(value, source, named(name))
+                                  : detail::check_calm_areas(value, source, named(name));
+        if (explicit_input) staged_given[name] = {std::string(source), next_order};
+        continue;
+      }
       const KeyDesc* k = find_key(name);
       if (k && section_of(name).empty()) {
         put(*k, value);
@@ -794,6 +810,15 @@ void SceneBuilder::set(std::string_view assignment) {
   if (key.empty()) {
     fail(kSource, "", "key.path=value", "\"" + std::string(assignment) + "\" (no key)");
   }
+  if (is_feature_key(key)) {
+    // The whole array (JSON), or a bare GeoJSON path: --set calm_areas=slicks.geojson.
+    json value = json::parse(text, nullptr, false);
+    if (value.is_discarded()) value = std::string(text);
+    json doc = json::object();
+    doc[std::string(key)] = std::move(value);
+    impl_->lay(doc, kSource, true);
+    return;
+  }
   if (!find_key(key) && is_section(key)) {
     fail(kSource, key, "a key path such as " + std::string(key) + ".<name>", "a whole section");
   }
@@ -823,6 +848,11 @@ Scene SceneBuilder::build() const {
          "a value <= ocean.lambda_max (" + format_number(s.ocean.lambda_max) + " m)",
          format_number(s.ocean.lambda_min));
   }
+
+  if (auto it = impl_->values.find("wakes"); it != impl_->values.end())
+    s.wakes = detail::wakes_from(it->second);
+  if (auto it = impl_->values.find("calm_areas"); it != impl_->values.end())
+    s.calm_areas = detail::calm_areas_from(it->second);
 
   const auto& given = impl_->given;
   if (auto utc = given.find("sun.utc"); utc != given.end()) {

@@ -453,6 +453,21 @@ TEST_F(Cli, SkyInvalidInputExitsWith2AndWritesNothing) {
   EXPECT_EQ(files(), std::vector<std::string>{});
 }
 
+// Wakes and calm areas (issue 9): bad geometry in the scene or in a GeoJSON file it names exits
+// with 2 before anything is rendered, naming the file and the feature.
+TEST_F(Cli, BadFeatureGeometryExitsWith2AndWritesNothing) {
+  write("ring.geojson", R"({"type": "Feature", "properties": {"name": "slick"}, "geometry":
+      {"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 1]]]}})");
+  write("areas.json", R"({"calm_areas": [{"geojson": "ring.geojson"}]})");
+  expect_invalid(
+      run("render areas.json -o r.exr"),
+      {"ring.geojson: feature (\"slick\").geometry.coordinates[0]: expected a closed ring"});
+  expect_invalid(
+      run(R"(render -o r.exr --set 'wakes=[{"track": [{"lat": 0, "lon": 0, "time": 5}, {"lat": 0, "lon": 0.001, "time": 5}]}]')"),
+      {"--set: wakes[0].track[1]: expected a time later than point 0's (5 s)"});
+  for (const char* name : {"r.exr", "r.png"}) EXPECT_FALSE(fs::exists(dir_ / name));
+}
+
 TEST_F(Cli, InfoPrintsBackendAndCapabilities) {
   const std::string command = "'" THALASSA_EXE "' info > '" + (dir_ / "info.txt").string() + "'";
   ASSERT_EQ(std::system(command.c_str()), 0);

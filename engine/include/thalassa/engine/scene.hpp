@@ -90,6 +90,48 @@ struct SkySettings {
   std::string exr;                   // path of an equirectangular HDR sky; empty = use `model`
 };
 
+// Wakes and calm areas (issue 9; docs/wakes.md, docs/scene.md "Wakes and calm areas"). The
+// scene keys `wakes` and `calm_areas` are arrays; GeoJSON files named there are read and checked
+// when the scene is loaded and arrive here in the same form as inline entries.
+struct GeoPoint {
+  double lat = 0.0;  // geodetic latitude, degrees, [-90, 90]
+  double lon = 0.0;  // longitude, degrees, [-180, 180]
+};
+
+struct TrackPoint {
+  double lat = 0.0;   // degrees, [-90, 90]
+  double lon = 0.0;   // degrees, [-180, 180]
+  double time = 0.0;  // simulation time (the scene's `time` axis) when the ship is here, s
+};
+
+// A ship and its Kelvin wake. Either a track (>= 2 points, strictly increasing times; the ship
+// sails the geodesic between successive points at constant speed, and exists only between the
+// first and the last time) or, with `track` empty, a position, heading and speed (the ship is at
+// lat/lon at `time` and sails the geodesic of that initial heading at that speed, forever).
+struct WakeSettings {
+  std::string name;               // from the entry or the GeoJSON feature; may be empty
+  std::vector<TrackPoint> track;  // the track form; empty for the position form
+  double lat = 0.0;               // position form: degrees, [-90, 90]
+  double lon = 0.0;               // position form: degrees, [-180, 180]
+  double time = 0.0;              // position form: s, when the ship is at lat/lon
+  double heading = 0.0;           // position form: degrees clockwise from north, [-360, 360]
+  double speed = 0.0;             // position form: m/s, [0, 100]
+  double amplitude = 0.3;         // m, [0, 10]: transverse wave amplitude one wavelength astern
+  double draft = 3.0;             // m, (0, 100]: depth of the equivalent source
+  double length = 3000.0;         // m, (0, 1e6]: how far astern the wake reaches
+};
+
+// A calm area: a polygon (an exterior ring and holes, each at least 3 distinct vertices, the
+// closing vertex not repeated; edges are geodesics) inside which wave amplitudes are scaled by
+// `scale`, faded over `fade` metres inside the edge.
+struct CalmAreaSettings {
+  std::string name;
+  std::vector<GeoPoint> exterior;
+  std::vector<std::vector<GeoPoint>> holes;
+  double scale = 0.2;   // amplitude factor inside, [0, 1]
+  double fade = 100.0;  // m, [0, 1e6]: the factor is reached this far inside the edge
+};
+
 struct Scene {
   ImageSettings image;
   CameraSettings camera;
@@ -98,6 +140,8 @@ struct Scene {
   PlanetSettings planet;
   OceanSettings ocean;
   SkySettings sky;
+  std::vector<WakeSettings> wakes;           // scene key `wakes` (none by default)
+  std::vector<CalmAreaSettings> calm_areas;  // scene key `calm_areas` (none by default)
 };
 
 // Builds a Scene from defaults, an optional file and overrides, with the checks of DESIGN
