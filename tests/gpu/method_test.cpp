@@ -15,8 +15,6 @@
 namespace thalassa {
 namespace {
 
-double luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
 struct Render {
   Image image;
   RenderStats stats;

@@ -554,7 +554,9 @@ TEST(DefaultFlight, IsTheDataFileAndDescendsFromOrbitToTheSurfaceAtSunset) {
   for (int i = 0; i < f.frame_count(); ++i) {
     const Scene s = f.frame_scene(i);
     const double h = s.camera.height;
-    if (i > 0) ASSERT_LT(h, previous) << "frame " << i;
+    if (i > 0) {
+      ASSERT_LT(h, previous) << "frame " << i;
+    }
     ASSERT_GE(h, 2.0);
     previous = h;
     // The horizon (the limb from orbit) stays in view, at least 5 degrees inside the image's
