@@ -19,6 +19,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "progress.hpp"
 #include "thalassa/thalassa.hpp"
 
 extern char** environ;
@@ -29,8 +30,7 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-constexpr int kFrameDigits = 5;        // frame_00000.exr
-constexpr int kProgressBarWidth = 24;  // characters of the terminal progress bar
+constexpr int kFrameDigits = 5;  // frame_00000.exr
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -118,19 +118,6 @@ int run_program(const std::vector<std::string>& argv, const std::string& log) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string duration_text(double seconds) {
-  if (!std::isfinite(seconds) || seconds < 0) return "?";
-  const long s = std::lround(seconds);
-  char text[32];
-  if (s >= 3600)
-    std::snprintf(text, sizeof text, "%ldh%02ldm%02lds", s / 3600, s / 60 % 60, s % 60);
-  else if (s >= 60)
-    std::snprintf(text, sizeof text, "%ldm%02lds", s / 60, s % 60);
-  else
-    std::snprintf(text, sizeof text, "%lds", s);
-  return text;
-}
-
 std::string height_text(double metres) {
   char text[32];
   if (metres >= 1e4)
@@ -139,61 +126,6 @@ std::string height_text(double metres) {
     std::snprintf(text, sizeof text, "%.1f m", metres);
   return text;
 }
-
-// Progress on stderr: a bar redrawn in place on a terminal, else one line per frame (for logs).
-class Progress {
- public:
-  Progress(int first, int last) : total_(last - first + 1), tty_(isatty(2)) {}
-
-  void skipped(int frame) {
-    ++done_;
-    if (tty_)
-      draw(frame, "skipped");
-    else
-      std::fprintf(stderr, "%s [%d/%d]: skipped (already written)\n", frame_name(frame, "").c_str(),
-                   done_, total_);
-  }
-  void rendered(int frame, double t, const Scene& scene, const std::string& mode, double seconds) {
-    ++done_;
-    ++rendered_;
-    render_seconds_ += seconds;
-    char detail[160];
-    std::snprintf(detail, sizeof detail, "t=%.3f s, %s, %s: %.2f s", t,
-                  height_text(scene.camera.height).c_str(), mode.c_str(), seconds);
-    if (tty_) {
-      draw(frame, detail);
-    } else {
-      std::fprintf(stderr, "%s [%d/%d] %s | %.2f frames/s, %s left\n",
-                   frame_name(frame, "").c_str(), done_, total_, detail, rate(),
-                   duration_text(left()).c_str());
-    }
-  }
-  void finish() {
-    if (tty_) std::fputc('\n', stderr);
-    std::fflush(stderr);
-  }
-  int rendered_count() const { return rendered_; }
-  int skipped_count() const { return done_ - rendered_; }
-
- private:
-  double rate() const { return render_seconds_ > 0 ? rendered_ / render_seconds_ : 0.0; }
-  // Frames still to go at the rate so far (skipped frames cost nothing, but are not known yet).
-  double left() const { return rendered_ > 0 ? (total_ - done_) / rate() : NAN; }
-  void draw(int frame, const std::string& detail) {
-    const int filled = total_ > 0 ? done_ * kProgressBarWidth / total_ : kProgressBarWidth;
-    const std::string bar = std::string(filled, '#') + std::string(kProgressBarWidth - filled, '-');
-    std::fprintf(stderr, "\r\033[K[%s] %d/%d  %.2f frames/s  %s left  %s %s", bar.c_str(), done_,
-                 total_, rate(), duration_text(left()).c_str(), frame_name(frame, "").c_str(),
-                 detail.c_str());
-    std::fflush(stderr);
-  }
-
-  int total_ = 0;
-  bool tty_ = false;
-  int done_ = 0;
-  int rendered_ = 0;
-  double render_seconds_ = 0.0;
-};
 
 Metadata frame_metadata(const Scene& scene, const std::string& merged_json,
                         const RenderStats& stats, const Flight& flight, int frame) {
@@ -396,7 +328,7 @@ int run_fly(const FlyArgs& args) {
     renderer_options.wave_anchor =
         nearest_wave_anchor(last_scene.camera.lat, last_scene.camera.lon);
   }
-  Progress progress(first, last);
+  ProgressBar progress(last - first + 1, "frames");
   std::vector<FrameRecord> records;
   const auto start = Clock::now();
   for (int frame = first; frame <= last; ++frame) {
@@ -412,7 +344,7 @@ int run_fly(const FlyArgs& args) {
     if (already_written(exr, png, merged)) {
       record.skipped = true;
       records.push_back(record);
-      progress.skipped(frame);
+      progress.skipped(frame_name(frame, ""), "already written");
       continue;
     }
     const auto renderer_start = Clock::now();
@@ -435,13 +367,17 @@ int run_fly(const FlyArgs& args) {
     outputs.commit();
     record.wall_ms = 1e3 * seconds_since(frame_start);
     records.push_back(record);
-    progress.rendered(frame, record.time, scene, record.stats.mode, record.wall_ms / 1e3);
+    char detail[160];
+    std::snprintf(detail, sizeof detail, "t=%.3f s, %s, %s: %.2f s", record.time,
+                  height_text(scene.camera.height).c_str(), record.stats.mode.c_str(),
+                  record.wall_ms / 1e3);
+    progress.done(frame_name(frame, ""), detail, record.wall_ms / 1e3);
   }
   progress.finish();
   renderer.reset();
   const double wall = seconds_since(start);
   std::fprintf(stderr, "thalassa: frames %d to %d: %d rendered, %d already written, in %s\n", first,
-               last, progress.rendered_count(), progress.skipped_count(),
+               last, progress.worked_count(), progress.skipped_count(),
                duration_text(wall).c_str());
 
   // 3. The video and the statistics.

@@ -4,4 +4,5 @@
 
 #include "thalassa/engine.hpp"
 #include "thalassa/planet.hpp"
+#include "thalassa/validation.hpp"
 #include "thalassa/version.hpp"

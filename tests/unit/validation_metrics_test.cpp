@@ -1,0 +1,309 @@
+// The validation metrics (validation/include/thalassa/validation/metrics.hpp): identities that
+// any correct implementation satisfies, and the horizon band against a brute-force search.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "thalassa/planet/camera_frame.hpp"
+#include "thalassa/planet/geodesy.hpp"
+#include "thalassa/planet/nadir_frame.hpp"
+#include "thalassa/validation/metrics.hpp"
+
+namespace thalassa::validation {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kDegree = kPi / 180.0;
+
+Scene view_scene(int width, int height) {
+  Scene scene;  // the defaults: 4 m above the sea, pitch -5, fov_y 45, WGS84
+  scene.image.width = width;
+  scene.image.height = height;
+  return scene;
+}
+
+// A sky-and-sea-like image: random positive radiance per channel (W m^-2 sr^-1 nm^-1).
+Image random_image(int width, int height, unsigned seed) {
+  Image image{width, height, std::vector<float>(static_cast<std::size_t>(width) * height * 4)};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> radiance(0.01f, 0.5f);
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4) {
+    image.rgba[i] = radiance(rng);
+    image.rgba[i + 1] = radiance(rng);
+    image.rgba[i + 2] = radiance(rng);
+    image.rgba[i + 3] = 1.0f;
+  }
+  return image;
+}
+
+Image scaled(const Image& image, float k) {
+  Image out = image;
+  for (std::size_t i = 0; i < out.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c) out.rgba[i + c] *= k;
+  return out;
+}
+
+// Grey of luminance `value` in every channel (the luminance weights sum to 1).
+void set_grey(Image& image, int x, int y, double value) {
+  float* p = image.pixel(x, y);
+  p[0] = p[1] = p[2] = static_cast<float>(value);
+  p[3] = 1.0f;
+}
+
+TEST(ValidationMetrics, LuminanceWeightsSumToOne) {
+  EXPECT_NEAR(kLuminanceR + kLuminanceG + kLuminanceB, 1.0, 1e-15);
+  const float grey[3] = {0.25f, 0.25f, 0.25f};
+  EXPECT_NEAR(luminance(grey), 0.25, 1e-15);
+}
+
+TEST(ValidationMetrics, IdenticalImagesGiveZeroErrorAndRowRatiosOfOne) {
+  const Scene scene = view_scene(96, 64);
+  const ViewGeometry view(scene);
+  const Image image = random_image(96, 64, 7);
+  const TermMetrics m = compare_images(image, image, view);
+  ASSERT_GT(view.sea_mask().count(), 1000);  // the sea fills the lower part of the view
+  EXPECT_EQ(m.error.pixels, view.sea_mask().count());
+  for (double e :
+       {m.error.relative_l1.l, m.error.relative_l1.r, m.error.relative_l1.g, m.error.relative_l1.b,
+        m.error.relative_rms.l, m.error.relative_rms.b, m.error.mean_abs.l}) {
+    EXPECT_EQ(e, 0.0);
+  }
+  int defined = 0;
+  for (std::size_t y = 0; y < m.row_ratios.size(); ++y) {
+    if (m.row_totals[y].l > 0.0) {
+      ++defined;
+      EXPECT_EQ(m.row_ratios[y].l, 1.0) << "row " << y;
+      EXPECT_EQ(m.row_ratios[y].g, 1.0) << "row " << y;
+    } else {
+      EXPECT_TRUE(std::isnan(m.row_ratios[y].l)) << "row " << y << " has no sea";
+    }
+  }
+  EXPECT_GT(defined, 20);
+  EXPECT_LT(defined, 64);  // rows above the horizon see no sea: ratios undefined there
+  EXPECT_EQ(m.max_row_deviation, 0.0);
+  ASSERT_GT(m.horizon.pixels, 0);
+  EXPECT_EQ(m.horizon.mean, 0.0);
+  EXPECT_EQ(m.horizon.std, 0.0);
+}
+
+TEST(ValidationMetrics, ImageScaledByKGivesRowRatiosKAndRelativeErrorsAbsKMinusOne) {
+  const Scene scene = view_scene(80, 60);
+  const ViewGeometry view(scene);
+  const Image reference = random_image(80, 60, 11);
+  for (float k : {0.5f, 1.37f, 3.0f}) {
+    const Image method = scaled(reference, k);
+    const TermMetrics m = compare_images(method, reference, view);
+    // float products round at 6e-8 relative; sums in double keep that.
+    const double tolerance = 1e-6 * k;
+    for (std::size_t y = 0; y < m.row_ratios.size(); ++y) {
+      if (!(m.row_totals[y].l > 0.0)) continue;
+      EXPECT_NEAR(m.row_ratios[y].l, k, tolerance) << "row " << y;
+      EXPECT_NEAR(m.row_ratios[y].r, k, tolerance) << "row " << y;
+      EXPECT_NEAR(m.row_ratios[y].b, k, tolerance) << "row " << y;
+    }
+    EXPECT_NEAR(m.max_row_deviation, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.error.relative_l1.l, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.error.relative_l1.g, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.error.relative_rms.l, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.error.relative_rms.b, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.error.mean_abs.l, std::abs(k - 1.0) * m.error.reference_mean.l, tolerance);
+  }
+}
+
+TEST(ValidationMetrics, RowTotalsAreSumsOverTheMask) {
+  Image image{3, 2, std::vector<float>(24, 0.0f)};
+  set_grey(image, 0, 0, 1.0);
+  set_grey(image, 1, 0, 2.0);
+  set_grey(image, 2, 0, 4.0);
+  set_grey(image, 0, 1, 8.0);
+  PixelMask mask = PixelMask::all(3, 2);
+  EXPECT_DOUBLE_EQ(row_totals(image, &mask)[0].l, 7.0);
+  EXPECT_DOUBLE_EQ(row_totals(image, &mask)[1].r, 8.0);
+  mask.inside[1] = 0;  // (1, 0) left out
+  EXPECT_DOUBLE_EQ(row_totals(image, &mask)[0].g, 5.0);
+  EXPECT_DOUBLE_EQ(row_totals(image)[0].b, 7.0);  // no mask: every pixel
+  const PixelMask wrong = PixelMask::all(2, 3);
+  EXPECT_THROW(row_totals(image, &wrong), std::invalid_argument);
+  EXPECT_THROW(relative_errors(image, random_image(3, 3, 1), mask), std::invalid_argument);
+}
+
+TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethodIsBlackToo) {
+  Image black{2, 2, std::vector<float>(16, 0.0f)};
+  const PixelMask mask = PixelMask::all(2, 2);
+  EXPECT_EQ(relative_errors(black, black, mask).relative_l1.l, 0.0);
+  Image lit = black;
+  set_grey(lit, 1, 1, 0.5);
+  const ErrorStats e = relative_errors(lit, black, mask);
+  EXPECT_TRUE(std::isnan(e.relative_l1.l));
+  EXPECT_TRUE(std::isnan(e.relative_rms.l));
+  EXPECT_DOUBLE_EQ(e.mean_abs.l, 0.125);  // 0.5 over 4 pixels, defined
+}
+
+// The band's pixels and their angle below the horizon against a brute-force search: for each
+// pixel, the horizon's dip in the pixel's azimuth found by bisection on the dip of rays that
+// meet the sea (ocean::sea_surface_distance), for a pitched and rolled camera on the WGS84 sea
+// at 45 degrees of latitude, where the horizon's dip depends on the azimuth.
+TEST(ValidationMetrics, HorizonBandSelectionMatchesABruteForceSearchOnTheWgs84Sea) {
+  Scene scene = view_scene(160, 120);
+  scene.camera.lat = 45.0;
+  scene.camera.height = 1000.0;  // the horizon 1.0 degree below the horizontal
+  scene.camera.heading = 30.0;
+  scene.camera.pitch = -4.0;
+  scene.camera.roll = 20.0;
+  scene.camera.fov_y = 30.0;
+  const ViewGeometry view(scene);
+  const ocean::SeaSurface surface =
+      make_nadir_frame(Planet(scene.planet), scene.camera).sea_surface;
+  const CameraBasis basis =
+      camera_basis(scene.camera.heading, scene.camera.pitch, scene.camera.roll);
+  const double tan_half = std::tan(0.5 * scene.camera.fov_y * kDegree);
+  const double aspect = double(scene.image.width) / scene.image.height;
+  const double depth = 5.0 * kDegree;
+  // Angles closer than this to a band edge may fall either side by rounding.
+  constexpr double kEdge = 1e-9;  // rad
+  int band = 0, sea = 0;
+  Image ones{160, 120, std::vector<float>(160 * 120 * 4, 1.0f)};
+  Image zeros{160, 120, std::vector<float>(160 * 120 * 4, 0.0f)};
+  for (int y = 0; y < 120; ++y) {
+    for (int x = 0; x < 160; ++x) {
+      const double u = 2.0 * (x + 0.5) / 160 - 1.0, v = 1.0 - 2.0 * (y + 0.5) / 120;
+      const glm::dvec3 d = glm::normalize(view_ray(basis, tan_half, aspect, u, v));
+      const double horizontal = std::hypot(d.x, d.y);
+      const glm::dvec2 a = glm::dvec2(d.x, d.y) / horizontal;
+      const auto hits = [&](double dip) {
+        const glm::dvec3 r(a.x * std::cos(dip), a.y * std::cos(dip), -std::sin(dip));
+        return ocean::sea_surface_distance(surface, scene.camera.height, r).has_value();
+      };
+      double lo = 0.0, hi = 0.5 * kPi;  // a horizontal ray misses, a vertical one hits
+      ASSERT_FALSE(hits(lo));
+      ASSERT_TRUE(hits(hi));
+      for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (hits(mid) ? hi : lo) = mid;
+      }
+      const double beta = std::atan2(-d.z, horizontal) - hi;
+      EXPECT_NEAR(view.below_horizon(x, y), beta, 1e-10) << x << ", " << y;
+      const bool in_band = beta >= 0.0 && beta < depth;
+      if (std::abs(beta) > kEdge && std::abs(beta - depth) > kEdge) {
+        EXPECT_EQ(view.below_horizon(x, y) >= 0.0 && view.below_horizon(x, y) < depth, in_band);
+        EXPECT_EQ(view.sea_mask()(x, y) != 0, beta >= 0.0) << x << ", " << y;
+      }
+      band += in_band;
+      sea += beta >= 0.0;
+    }
+  }
+  ASSERT_GT(band, 500);  // the rolled horizon crosses the view
+  ASSERT_LT(sea, 160 * 120);
+  const HorizonBand h = horizon_band(ones, zeros, view);
+  EXPECT_EQ(h.pixels, band);
+  EXPECT_EQ(h.bins.size(), 10u);  // 5 degrees in bins of 0.5
+  EXPECT_EQ(view.sea_mask().count(), sea);
+}
+
+// D = L_method - L_reference = g * beta (beta in degrees below the horizon) in the band, on a
+// rolled view: each bin's azimuth-averaged mean is g times the bin's middle angle, and its
+// standard deviation that of a uniform distribution over the bin, g * bin / sqrt(12), to the
+// sampling of the bin by pixel centres (about 7 pixels across a bin here).
+TEST(ValidationMetrics, KnownGradientBelowTheHorizonGivesTheExpectedBandMeanAndStd) {
+  Scene scene = view_scene(400, 300);
+  scene.camera.height = 100.0;
+  scene.camera.pitch = -2.0;
+  scene.camera.roll = 15.0;
+  scene.camera.fov_y = 20.0;  // 0.067 degree per pixel
+  const ViewGeometry view(scene);
+  const double g = 0.02;          // W m^-2 sr^-1 nm^-1 per degree
+  const double background = 0.3;  // reference luminance
+  Image reference{400, 300, std::vector<float>(400 * 300 * 4, 0.0f)};
+  Image method = reference;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 400; ++x) {
+      set_grey(reference, x, y, background);
+      set_grey(method, x, y, background + g * view.below_horizon(x, y) / kDegree);
+    }
+  HorizonBandOptions options;
+  options.bin_deg = 0.5;
+  const HorizonBand h = horizon_band(method, reference, view, options);
+  ASSERT_EQ(h.bins.size(), 10u);
+  for (const HorizonBin& b : h.bins) {
+    ASSERT_GT(b.pixels, 1000) << b.beta_lo_deg;
+    const double middle = 0.5 * (b.beta_lo_deg + b.beta_hi_deg);
+    // Pixel centres sample the bin every ~0.07 degree: the mean is the middle to within a few
+    // per cent of the bin, the std to within 5%; float images round D at ~3e-8.
+    EXPECT_NEAR(b.mean, g * middle, 0.02 * g * options.bin_deg) << b.beta_lo_deg;
+    EXPECT_NEAR(b.std, g * options.bin_deg / std::sqrt(12.0),
+                0.05 * g * options.bin_deg / std::sqrt(12.0))
+        << b.beta_lo_deg;
+    EXPECT_NEAR(b.reference_mean, background, 1e-6);
+  }
+  EXPECT_NEAR(h.mean, g * 2.5, 0.02 * g * options.bin_deg);  // the band's middle, 2.5 degrees
+  // A constant difference: mean exactly it, standard deviation 0 (two passes, no cancellation).
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 400; ++x) set_grey(method, x, y, background + 0.125);
+  const HorizonBand c = horizon_band(method, reference, view, options);
+  for (const HorizonBin& b : c.bins) {
+    EXPECT_NEAR(b.mean, 0.125, 1e-7);
+    EXPECT_LT(b.std, 1e-12);
+  }
+}
+
+// The band weights pixels by their area in the (azimuth, angle) plane, so that the mean is
+// uniform in azimuth: an image whose difference depends on the azimuth only, as sin(azimuth -
+// heading), averages to 0 over a view symmetric about its heading, although the pixels of a
+// perspective image are not uniform in azimuth.
+TEST(ValidationMetrics, HorizonBandMeanIsUniformInAzimuth) {
+  Scene scene = view_scene(240, 120);
+  scene.camera.height = 10.0;
+  scene.camera.pitch = 0.0;
+  scene.camera.heading = 0.0;
+  scene.camera.fov_y = 60.0;  // 120 degrees wide: strongly non-uniform pixel azimuths
+  const ViewGeometry view(scene);
+  Image reference{240, 120, std::vector<float>(240 * 120 * 4, 0.0f)};
+  Image method = reference;
+  double pixel_average = 0.0;
+  int n = 0;
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 240; ++x) {
+      const glm::dvec3 d = view.ray(x, y);
+      const double azimuth = std::atan2(d.x, d.y);
+      // |sin| makes the plain pixel average differ from the azimuth average (pixels crowd
+      // toward the edges of a wide view in azimuth).
+      const double value = std::abs(std::sin(azimuth));
+      set_grey(method, x, y, value);
+      const double beta = view.below_horizon(x, y);
+      if (beta >= 0.0 && beta < 5.0 * kDegree) {
+        pixel_average += value;
+        ++n;
+      }
+    }
+  pixel_average /= n;
+  // Over azimuths uniform in [-a, a] (a = the half width at the horizon), the mean of |sin| is
+  // (1 - cos a) / a.
+  const double half_width = std::atan(std::tan(30.0 * kDegree) * 2.0);
+  const double azimuth_average = (1.0 - std::cos(half_width)) / half_width;
+  const HorizonBand h = horizon_band(method, reference, view);
+  EXPECT_NEAR(h.mean, azimuth_average, 0.01);
+  EXPECT_GT(std::abs(pixel_average - azimuth_average), 0.03);  // the weights matter here
+}
+
+TEST(ValidationMetrics, FlickerOfIdenticalFramesIsZero) {
+  const Image a = random_image(32, 24, 3);
+  const PixelMask mask = PixelMask::all(32, 24);
+  const std::vector<Image> still = {a, a, a};
+  EXPECT_EQ(flicker(still, mask), 0.0);
+  EXPECT_EQ(temporal_error(still, still, mask), 0.0);
+  // One frame scaled by k: |k - 1| L / ((1 + k) L / 2) for that pair.
+  const std::vector<Image> step = {a, scaled(a, 1.5f)};
+  EXPECT_NEAR(flicker(step, mask), 0.5 / 1.25, 1e-6);
+  // The method changes as the reference does: no temporal error; standing still while the
+  // reference changes: an error of 1.
+  EXPECT_NEAR(temporal_error(step, step, mask), 0.0, 1e-12);
+  const std::vector<Image> frozen = {a, a};
+  EXPECT_NEAR(temporal_error(frozen, step, mask), 1.0, 1e-12);
+  EXPECT_TRUE(std::isnan(flicker(std::vector<Image>{a}, mask)));
+}
+
+}  // namespace
+}  // namespace thalassa::validation

@@ -1,0 +1,361 @@
+// The validation report (validation/include/thalassa/validation/report.hpp): every file is
+// written, the plots are real PNGs drawn by gnuplot (installed by scripts/setup), and the CSV
+// and JSON read back to the same numbers.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "thalassa/engine/image.hpp"
+#include "thalassa/validation/report.hpp"
+
+namespace thalassa::validation {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// RFC 4180 lines (no line breaks inside fields in our files).
+std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::stringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields(1);
+    bool quoted = false;
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const char c = line[i];
+      if (quoted) {
+        if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+          fields.back() += '"';
+          ++i;
+        } else if (c == '"') {
+          quoted = false;
+        } else {
+          fields.back() += c;
+        }
+      } else if (c == '"') {
+        quoted = true;
+      } else if (c == ',') {
+        fields.emplace_back();
+      } else {
+        fields.back() += c;
+      }
+    }
+    rows.push_back(std::move(fields));
+  }
+  return rows;
+}
+
+// A CSV number: empty is undefined (NaN).
+double csv_number(const std::string& s) { return s.empty() ? NAN : std::stod(s); }
+
+// Equal as the report promises: the same double, or both undefined.
+void expect_same(double got, double want, const std::string& what) {
+  if (std::isnan(want))
+    EXPECT_TRUE(std::isnan(got)) << what << ": " << got;
+  else
+    EXPECT_EQ(got, want) << what;
+}
+
+// Metrics with awkward numbers (not short decimals), undefined ratios, and an empty bin.
+TermMetrics synthetic_metrics(double seed, int rows) {
+  TermMetrics m;
+  for (int y = 0; y < rows; ++y) {
+    const double t = seed * (y + 1) / 3.0;
+    m.row_totals.push_back({t, t * 1.1, t / 7.0, std::sqrt(t)});
+    m.row_ratios.push_back(y < 3 ? ChannelValues{NAN, NAN, NAN, NAN}
+                                 : ChannelValues{1.0 + t / 100, 1.0 - t / 300, 1.0 / 3.0, 0.9});
+  }
+  m.max_row_deviation = seed / 100.0 + 1.0 / 3.0;
+  m.error.pixels = 1234;
+  m.error.relative_l1 = {seed / 10 + 1e-17, 0.1 / 3, 0.2 / 3, 0.3 / 7};
+  m.error.relative_rms = {seed / 9, 0.11, 0.12, NAN};
+  m.error.mean_abs = {0.001 / 3, 0.002, 0.003, 0.004};
+  m.error.reference_mean = {0.25, 0.3, 0.2, 0.1};
+  for (int k = 0; k < 10; ++k) {
+    HorizonBin b{0.5 * k,
+                 0.5 * (k + 1),
+                 100 + k,
+                 1e-4 * (k + 1) / 3.0,
+                 seed * 0.01 * k,
+                 seed * 0.002 * (k + 1) / 7.0,
+                 0.3};
+    if (k == 9) b = {4.5, 5.0, 0, 0.0, NAN, NAN, NAN};  // an empty bin
+    m.horizon.bins.push_back(b);
+  }
+  m.horizon.mean = seed * 0.04;
+  m.horizon.std = seed * 0.0011 / 3.0;
+  m.horizon.reference_mean = 0.3;
+  m.horizon.pixels = 945;
+  return m;
+}
+
+Report synthetic_report() {
+  Report report;
+  report.suite = "unit";
+  report.description = "a report with <markup> & \"quotes\", to escape";
+  report.source = "unit.json";
+  report.backend = "osmesa";
+  report.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  report.version = "0.1.0";
+  CaseResult c;
+  c.name = "wind10_100m_low_sun";
+  c.description = "10 m/s, 100 m, low sun, with a comma";
+  c.set = {{"ocean.wind_speed", "10"}, {"camera.height", "100"}, {"ocean.spectrum", "\"omega-2\""}};
+  c.camera_height = 100.0;
+  const struct {
+    const char* name;
+    const char* method;
+    bool plain;
+    double ms;
+  } methods[] = {{"reference", "reference", true, 5123.25},
+                 {"basic", "basic", true, 40.5},
+                 {"full", "full", true, 61.0 / 3.0},
+                 {"full_cell4", "full", false, 90.125}};
+  double seed = 1.0;
+  for (const auto& m : methods) {
+    MethodResult r{m.name, m.method, m.plain, {}, {}};
+    for (const char* term : {"sun", "all"}) {
+      TermResult t;
+      t.term = term;
+      t.frame_ms = m.ms * (term == std::string("all") ? 1.5 : 1.0);
+      t.exr = std::string("images/") + c.name + "_" + m.name + "_" + term + ".exr";
+      t.png = std::string("images/") + c.name + "_" + m.name + "_" + term + ".png";
+      t.metrics = synthetic_metrics(seed += 0.7, 40);
+      if (term == std::string("all")) {
+        t.flicker = 0.05 * seed;
+        t.temporal_error = 0.1 / seed;
+      }
+      r.terms.push_back(std::move(t));
+    }
+    if (r.method == "reference") r.convergence = {{"sun", 0.004}, {"all", 0.0071}};
+    c.methods.push_back(std::move(r));
+  }
+  report.cases.push_back(c);
+  CaseResult bad;
+  bad.name = "lat_out_of_range";
+  bad.set = {{"camera.lat", "90.5"}};
+  bad.expected_exit = 2;
+  bad.expected_error = "camera.lat: expected";
+  bad.exit_status = 2;
+  bad.message = "--set: camera.lat: expected a number in [-90, 90] (degrees), got 90.5";
+  report.cases.push_back(bad);
+  return report;
+}
+
+class ValidationReport : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("thalassa_report_" + std::to_string(getpid()));
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
+  const Report report = synthetic_report();
+  ReportOptions options;
+  options.plot_width = 640;
+  options.plot_height = 400;
+  const std::vector<std::string> written = write_report(report, dir_.string(), options);
+  for (const char* name :
+       {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv", "index.html"})
+    EXPECT_TRUE(std::find(written.begin(), written.end(), name) != written.end()) << name;
+  const std::string c = report.cases[0].name;
+  // Per term: rows and horizon; per case: error against time. The case that did not render has
+  // no plots.
+  const std::vector<std::string> plots = {c + "_sun_rows", c + "_all_rows", c + "_error_time",
+                                          c + "_sun_horizon", c + "_all_horizon"};
+  for (const std::string& p : plots) {
+    for (const char* ext : {".dat", ".gp", ".png"}) {
+      const std::string rel = "plots/" + p + ext;
+      EXPECT_TRUE(fs::is_regular_file(dir_ / rel)) << rel;
+      EXPECT_TRUE(std::find(written.begin(), written.end(), rel) != written.end()) << rel;
+    }
+    const Image png = read_image((dir_ / "plots" / (p + ".png")).string());
+    EXPECT_EQ(png.width, 640) << p;
+    EXPECT_EQ(png.height, 400) << p;
+  }
+  for (const std::string& rel : written) EXPECT_TRUE(fs::is_regular_file(dir_ / rel)) << rel;
+  EXPECT_EQ(written.size(), 6u + 3u * plots.size());
+  // Nothing pending or temporary is left.
+  for (const auto& entry : fs::recursive_directory_iterator(dir_))
+    EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
+  // index.html links every plot and image relatively, and escapes text.
+  const std::string index = read_text(dir_ / "index.html");
+  for (const std::string& p : plots)
+    EXPECT_NE(index.find("src=\"plots/" + p + ".png\""), std::string::npos) << p;
+  for (const TermResult& t : report.cases[0].methods[1].terms) {
+    EXPECT_NE(index.find("src=\"" + t.png + "\""), std::string::npos) << t.png;
+    EXPECT_NE(index.find("href=\"" + t.exr + "\""), std::string::npos) << t.exr;
+  }
+  EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
+  EXPECT_EQ(index.find("<markup>"), std::string::npos);
+  EXPECT_EQ(index.find("=\"/"), std::string::npos);  // no absolute link
+  // The row plot has the plain methods' curves only; the error plot every method but the
+  // reference, which is a line at its frame time.
+  const std::string rows_gp = read_text(dir_ / "plots" / (c + "_sun_rows.gp"));
+  EXPECT_NE(rows_gp.find("title 'basic'"), std::string::npos);
+  EXPECT_EQ(rows_gp.find("full_cell4"), std::string::npos);
+  const std::string error_dat = read_text(dir_ / "plots" / (c + "_error_time.dat"));
+  EXPECT_NE(error_dat.find("full_cell4 "), std::string::npos);
+  EXPECT_EQ(error_dat.find("\nreference "), std::string::npos);
+}
+
+TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
+  const Report report = synthetic_report();
+  write_report(report, dir_.string());
+  const CaseResult& c = report.cases[0];
+  std::map<std::pair<std::string, std::string>, const TermResult*> terms;
+  for (const MethodResult& m : c.methods)
+    for (const TermResult& t : m.terms) terms[{m.name, t.term}] = &t;
+
+  // metrics.csv: one line per method and term, by column name.
+  const auto metrics = parse_csv(read_text(dir_ / "metrics.csv"));
+  ASSERT_EQ(metrics.size(), 1u + terms.size());
+  std::map<std::string, std::size_t> col;
+  for (std::size_t i = 0; i < metrics[0].size(); ++i) col[metrics[0][i]] = i;
+  for (std::size_t i = 1; i < metrics.size(); ++i) {
+    const auto& f = metrics[i];
+    ASSERT_EQ(f.size(), metrics[0].size());
+    EXPECT_EQ(f[col["case"]], c.name);
+    const TermResult& t = *terms.at({f[col["method"]], f[col["term"]]});
+    const std::string what = f[col["method"]] + "/" + f[col["term"]];
+    expect_same(csv_number(f[col["frame_ms"]]), t.frame_ms, what + " frame_ms");
+    expect_same(csv_number(f[col["rel_l1_l"]]), t.metrics.error.relative_l1.l, what + " l1");
+    expect_same(csv_number(f[col["rel_l1_b"]]), t.metrics.error.relative_l1.b, what + " l1 b");
+    expect_same(csv_number(f[col["rel_rms_b"]]), t.metrics.error.relative_rms.b, what + " rms b");
+    expect_same(csv_number(f[col["max_row_deviation"]]), t.metrics.max_row_deviation, what);
+    expect_same(csv_number(f[col["horizon_std"]]), t.metrics.horizon.std, what + " std");
+    expect_same(csv_number(f[col["flicker"]]), t.flicker.value_or(NAN), what + " flicker");
+    expect_same(csv_number(f[col["reference_flicker"]]),
+                terms.at({"reference", t.term})->flicker.value_or(NAN), what + " ref flicker");
+    EXPECT_EQ(f[col["png"]], t.png);
+  }
+  // rows.csv: every row total and ratio.
+  const auto rows = parse_csv(read_text(dir_ / "rows.csv"));
+  ASSERT_EQ(rows.size(), 1u + terms.size() * 40u);
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto& f = rows[i];
+    const TermResult& t = *terms.at({f[1], f[2]});
+    const std::size_t y = std::stoul(f[3]);
+    expect_same(csv_number(f[4]), t.metrics.row_totals[y].l, "total");
+    expect_same(csv_number(f[7]), t.metrics.row_totals[y].b, "total b");
+    expect_same(csv_number(f[8]), t.metrics.row_ratios[y].l, "ratio");
+  }
+  // horizon.csv: every bin.
+  const auto horizon = parse_csv(read_text(dir_ / "horizon.csv"));
+  ASSERT_EQ(horizon.size(), 1u + terms.size() * 10u);
+  for (std::size_t i = 1; i < horizon.size(); ++i) {
+    const auto& f = horizon[i];
+    const TermResult& t = *terms.at({f[1], f[2]});
+    const HorizonBin& b = t.metrics.horizon.bins[(i - 1) % 10];
+    expect_same(csv_number(f[3]), b.beta_lo_deg, "lo");
+    expect_same(csv_number(f[6]), b.weight, "weight");
+    expect_same(csv_number(f[7]), b.mean, "mean");
+    expect_same(csv_number(f[8]), b.std, "std");
+  }
+  // cases.csv: the quoted description-free fields and the pass/fail.
+  const auto cases = parse_csv(read_text(dir_ / "cases.csv"));
+  ASSERT_EQ(cases.size(), 3u);
+  EXPECT_EQ(cases[2][0], "lat_out_of_range");
+  EXPECT_EQ(cases[2][6], report.cases[1].message);  // quoted: it holds commas
+  EXPECT_EQ(cases[2][7], "1");
+
+  // results.json: the whole report, read back.
+  const Report back = report_from_json(read_text(dir_ / "results.json"));
+  EXPECT_EQ(back.renderer, report.renderer);
+  ASSERT_EQ(back.cases.size(), 2u);
+  EXPECT_EQ(back.cases[1].message, report.cases[1].message);
+  EXPECT_TRUE(back.cases[1].passed());
+  ASSERT_EQ(back.cases[0].set.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(back.cases[0].set[i].key, c.set[i].key);
+    EXPECT_EQ(back.cases[0].set[i].value_json, c.set[i].value_json);
+  }
+  ASSERT_EQ(back.cases[0].methods.size(), c.methods.size());
+  for (std::size_t mi = 0; mi < c.methods.size(); ++mi) {
+    const MethodResult &a = back.cases[0].methods[mi], &b = c.methods[mi];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.plain, b.plain);
+    EXPECT_EQ(a.convergence, b.convergence);
+    ASSERT_EQ(a.terms.size(), b.terms.size());
+    for (std::size_t ti = 0; ti < a.terms.size(); ++ti) {
+      const TermResult &x = a.terms[ti], &w = b.terms[ti];
+      const std::string what = b.name + "/" + w.term;
+      expect_same(x.frame_ms, w.frame_ms, what);
+      EXPECT_EQ(x.flicker.has_value(), w.flicker.has_value()) << what;
+      expect_same(x.flicker.value_or(NAN), w.flicker.value_or(NAN), what);
+      expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);
+      expect_same(x.metrics.error.relative_l1.l, w.metrics.error.relative_l1.l, what);
+      expect_same(x.metrics.error.relative_rms.b, w.metrics.error.relative_rms.b, what);
+      expect_same(x.metrics.error.mean_abs.l, w.metrics.error.mean_abs.l, what);
+      EXPECT_EQ(x.metrics.error.pixels, w.metrics.error.pixels);
+      ASSERT_EQ(x.metrics.row_totals.size(), w.metrics.row_totals.size());
+      for (std::size_t y = 0; y < w.metrics.row_totals.size(); ++y) {
+        expect_same(x.metrics.row_totals[y].g, w.metrics.row_totals[y].g, what);
+        expect_same(x.metrics.row_ratios[y].l, w.metrics.row_ratios[y].l, what);
+      }
+      ASSERT_EQ(x.metrics.horizon.bins.size(), w.metrics.horizon.bins.size());
+      for (std::size_t k = 0; k < w.metrics.horizon.bins.size(); ++k) {
+        expect_same(x.metrics.horizon.bins[k].std, w.metrics.horizon.bins[k].std, what);
+        EXPECT_EQ(x.metrics.horizon.bins[k].pixels, w.metrics.horizon.bins[k].pixels);
+      }
+      expect_same(x.metrics.horizon.mean, w.metrics.horizon.mean, what);
+    }
+  }
+  // Undefined numbers are null in the JSON, never NaN text.
+  EXPECT_EQ(read_text(dir_ / "results.json").find("NaN"), std::string::npos);
+  EXPECT_EQ(report_json(back), report_json(report));
+}
+
+TEST_F(ValidationReport, MissingGnuplotIsARunTimeErrorBeforeAnyFileIsWritten) {
+  ReportOptions options;
+  options.gnuplot = "/nonexistent/bin/gnuplot";
+  try {
+    write_report(synthetic_report(), dir_.string(), options);
+    FAIL() << "wrote a report without gnuplot";
+  } catch (const ReportError& e) {
+    EXPECT_NE(std::string(e.what()).find("apt-get install gnuplot-nox"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_FALSE(fs::exists(dir_));
+  EXPECT_THROW(find_gnuplot(options), ReportError);
+  EXPECT_FALSE(find_gnuplot().empty());  // scripts/setup installs it
+}
+
+// A gnuplot that fails: the message names the plot and carries gnuplot's own output.
+TEST_F(ValidationReport, FailingGnuplotIsReportedWithItsOutput) {
+  fs::create_directories(dir_);
+  const fs::path fake = dir_ / "fake-gnuplot";
+  std::ofstream(fake) << "#!/bin/sh\necho 'no pngcairo here' >&2\nexit 3\n";
+  fs::permissions(fake, fs::perms::owner_all);
+  ReportOptions options;
+  options.gnuplot = fake.string();
+  try {
+    write_report(synthetic_report(), (dir_ / "out").string(), options);
+    FAIL();
+  } catch (const ReportError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("gnuplot failed (status 3): no pngcairo here"), std::string::npos) << what;
+    EXPECT_NE(what.find("_rows.png"), std::string::npos) << what;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "index.html"));
+}
+
+}  // namespace
+}  // namespace thalassa::validation

@@ -1,0 +1,251 @@
+// Suite files (validation/include/thalassa/validation/suite.hpp, docs/validation.md): the default
+// suite loads and is data/suites/validation.json; stress-style cases fit the same format; bad
+// suites are refused with one line naming the file, the key path, what was expected and got.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+#include <string>
+#include <tuple>
+
+#include "thalassa/validation/suite.hpp"
+
+namespace thalassa::validation {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The message of the SuiteError that loading `text` as "t.json" throws ("" when it loads).
+std::string error_of(const std::string& text) {
+  try {
+    load_suite_text(text, "t.json");
+  } catch (const SuiteError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
+  const std::string path = std::string(THALASSA_SOURCE_DIR) + "/data/suites/validation.json";
+  EXPECT_EQ(nlohmann::json::parse(read_text(path)), nlohmann::json::parse(default_suite_json()));
+  const Suite file = load_suite_file(path);
+  const Suite suite = default_suite();
+  EXPECT_EQ(file.cases.size(), suite.cases.size());
+  EXPECT_EQ(suite.name, "validation");
+  ASSERT_NE(suite.reference_method(), nullptr);
+  for (std::string_view m : kMethods) {
+    const SuiteMethod* method = suite.find_method(m);
+    ASSERT_NE(method, nullptr) << m;
+    EXPECT_TRUE(method->plain());
+  }
+  EXPECT_EQ(suite.terms, (std::vector<std::string>{"sun", "sky", "sea", "all"}));
+  EXPECT_GE(suite.flicker.frames, 2);
+  // Every combination of wind, camera height and sun of issue 6, point 4, once; each case's
+  // scene (and with each variant) builds.
+  std::set<std::tuple<double, double, double>> seen;
+  std::set<double> grid_cells, waves;
+  std::set<std::string> filters;
+  for (const SuiteCase& c : suite.cases) {
+    EXPECT_EQ(c.expected_exit, 0);
+    EXPECT_EQ(c.methods.size(), suite.methods.size());
+    const Scene scene = case_scene(suite, c);
+    seen.insert({scene.ocean.wind_speed, scene.camera.height, scene.sun.zenith});
+    for (const SuiteMethod& m : suite.methods) {
+      const Scene s = case_scene(suite, c, &m);
+      EXPECT_EQ(s.camera.height, scene.camera.height);  // variants never move the camera
+      grid_cells.insert(s.ocean.grid_cell);
+      waves.insert(s.ocean.waves);
+      filters.insert(s.ocean.sky_filter);
+    }
+  }
+  EXPECT_EQ(seen.size(), 3u * 4u * 2u);
+  EXPECT_EQ(suite.cases.size(), 24u);
+  for (double wind : {3.0, 10.0, 20.0})
+    for (double height : {4.0, 100.0, 1000.0, 8000.0}) {
+      int suns = 0;
+      for (const auto& [w, h, z] : seen) suns += (w == wind && h == height);
+      EXPECT_EQ(suns, 2) << wind << " m/s, " << height << " m";
+    }
+  EXPECT_EQ(grid_cells, (std::set<double>{4, 8, 16}));
+  EXPECT_EQ(waves, (std::set<double>{30, 60, 120}));
+  EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples"}));
+}
+
+// The stress suite's form (base, cases with expect 2 and an error substring) is the same format.
+TEST(ValidationSuite, StressCasesWithAnExpectedExitStatusFit) {
+  const Suite s = load_suite_text(R"({
+    "suite": "stress", "description": "extreme inputs",
+    "base": {"image.width": 64, "image.height": 48},
+    "cases": [
+      {"name": "sun_at_zenith", "description": "glint at the nadir", "set": {"sun.zenith": 0}},
+      {"name": "lat_out_of_range", "set": {"camera.lat": 90.5}, "expect": 2,
+       "error": "camera.lat: expected a number in [-90, 90]"},
+      {"name": "lambda_min_above_max", "set": {"ocean.lambda_min": 10, "ocean.lambda_max": 5},
+       "expect": 2, "error": "ocean.lambda_min"}
+    ]})",
+                                  "stress.json");
+  ASSERT_EQ(s.cases.size(), 3u);
+  EXPECT_EQ(s.methods.size(), 1u);  // no methods: each case rendered once, plainly
+  EXPECT_EQ(s.methods[0].method, "full");
+  EXPECT_EQ(s.reference_method(), nullptr);  // no reference: no metrics
+  EXPECT_EQ(s.cases[1].expected_exit, 2);
+  EXPECT_EQ(s.cases[1].expected_error, "camera.lat: expected a number in [-90, 90]");
+  EXPECT_EQ(case_assignments(s, s.cases[0]),
+            (std::vector<std::string>{"image.width=64", "image.height=48", "sun.zenith=0"}));
+  EXPECT_EQ(case_scene(s, s.cases[0]).image.width, 64);
+  // The invalid case's scene is refused when built, with the message the case expects.
+  try {
+    case_scene(s, s.cases[1]);
+    FAIL() << "a latitude of 90.5 built";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find(s.cases[1].expected_error), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(case_scene(s, s.cases[2]), SceneError);
+}
+
+TEST(ValidationSuite, AMethodsSetAppliesToThatMethodOnlyAndWinsOverTheCase) {
+  const Suite s = load_suite_text(R"({"suite": "v",
+    "base": {"ocean.waves": 60, "ocean.grid_cell": 8},
+    "methods": ["reference", {"name": "coarse", "method": "full", "set": {"ocean.grid_cell": 16}}],
+    "cases": [{"name": "a", "set": {"ocean.grid_cell": 4}},
+              {"name": "b", "set": {}, "methods": ["coarse"]}]})",
+                                  "v.json");
+  EXPECT_EQ(case_scene(s, s.cases[0]).ocean.grid_cell, 4.0);
+  EXPECT_EQ(case_scene(s, s.cases[0], s.find_method("reference")).ocean.grid_cell, 4.0);
+  EXPECT_EQ(case_scene(s, s.cases[0], s.find_method("coarse")).ocean.grid_cell, 16.0);
+  EXPECT_FALSE(s.find_method("coarse")->plain());
+  EXPECT_EQ(s.cases[0].methods, (std::vector<std::string>{"reference", "coarse"}));
+  EXPECT_EQ(s.cases[1].methods, (std::vector<std::string>{"coarse"}));
+  EXPECT_EQ(terms_option("all"), "sun,sky,sea,air");
+  EXPECT_EQ(terms_option("sky"), "sky");
+}
+
+TEST(ValidationSuite, SceneFileIsResolvedAgainstTheSuitesFolder) {
+  const fs::path dir = fs::temp_directory_path() / ("thalassa_suite_" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "base.json") << R"({"camera": {"height": 250}})";
+  std::ofstream(dir / "s.json") << R"({"suite": "s", "scene": "base.json",
+    "cases": [{"name": "a", "set": {"sun.zenith": 70}}]})";
+  const Suite s = load_suite_file((dir / "s.json").string());
+  const Scene scene = case_scene(s, s.cases[0]);
+  EXPECT_EQ(scene.camera.height, 250.0);
+  EXPECT_EQ(scene.sun.zenith, 70.0);
+  std::ofstream(dir / "bad.json") << R"({"suite": "s", "scene": "missing.json",
+    "cases": [{"name": "a", "set": {}}]})";
+  try {
+    load_suite_file((dir / "bad.json").string());
+    FAIL();
+  } catch (const SuiteError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              (dir / "bad.json").string() +
+                  ": scene: expected a readable scene file (relative to the suite file's "
+                  "folder), got \"" +
+                  (dir / "missing.json").string() + "\", no such file");
+  }
+  fs::remove_all(dir);
+}
+
+TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
+  const std::string ok_case = R"({"name": "a", "set": {}})";
+  const struct {
+    std::string text;
+    std::string message;  // the whole message, or its start when it ends with "..."
+  } bad[] = {
+      {"{", "t.json: expected valid JSON, got ..."},
+      {"[]",
+       "t.json: expected a JSON object (a suite, see docs/validation.md), got an empty array"},
+      {R"({"cases": [)" + ok_case + "]}",
+       "t.json: suite: expected the suite's name (a-z, 0-9 and _), got none"},
+      {R"({"suite": "Bad Name", "cases": [)" + ok_case + "]}",
+       "t.json: suite: expected a name of a-z, 0-9 and _, got \"Bad Name\""},
+      {R"({"suite": "s", "frobs": 1, "cases": [)" + ok_case + "]}",
+       "t.json: frobs: expected a known key (suite, description, scene, base, methods, terms, "
+       "flicker, reference, horizon, cases; see docs/validation.md), got an unknown key"},
+      {R"({"suite": "s", "suite": "t", "cases": [)" + ok_case + "]}",
+       "t.json: suite: expected each key once, got \"suite\" a second time"},
+      {R"({"suite": "s"})", "t.json: cases: expected an array of cases, got none"},
+      {R"({"suite": "s", "cases": []})",
+       "t.json: cases: expected a non-empty array of cases, got an empty array"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.hieght": 3}}]})",
+       "t.json: cases[0].set.camera.hieght: expected a scene key (docs/scene.md), got an unknown "
+       "key"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.lat": 91}}]})",
+       "t.json: cases[0].set.camera.lat: expected a number in [-90, 90]..."},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.spectrum": "jonswap"}}]})",
+       "t.json: cases[0].set.ocean.spectrum: expected ..."},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": [1]}}]})",
+       "t.json: cases[0].set.camera.pitch: expected a number, string or boolean, got an array"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.lambda_min": 10, "ocean.lambda_max": 5}}]})",
+       "t.json: cases[0].set: expected a valid scene, got --set: ocean.lambda_min..."},
+      {R"({"suite": "s", "cases": [{"name": "a"}]})",
+       "t.json: cases[0].set: expected an object of scene keys ({} for none), got none"},
+      {R"({"suite": "s", "cases": [)" + ok_case + "," + ok_case + "]}",
+       "t.json: cases[1].name: expected a name not used before in cases, got \"a\" a second time"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 1}]})",
+       "t.json: cases[0].expect: expected 0 or 2, got 1"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 2}]})",
+       "t.json: cases[0].error: expected a part of the error message the case must give (expect "
+       "2), got none"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "error": "x"}]})",
+       "t.json: cases[0].error: expected no error with expect 0 (an error only with \"expect\": "
+       "2), got \"x\""},
+      {R"({"suite": "s", "methods": ["fast"], "cases": [)" + ok_case + "]}",
+       "t.json: methods[0]: expected one of reference, basic, full, normals, got \"fast\""},
+      {R"({"suite": "s", "methods": ["full", "full"], "cases": [)" + ok_case + "]}",
+       "t.json: methods[1]: expected a name not used before in methods, got \"full\" a second "
+       "time"},
+      {R"({"suite": "s", "methods": [{"name": "c", "method": "full", "set": {"ocean.grid_cell": 0}}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[0].set.ocean.grid_cell: expected a number in [1, 64]..."},
+      {R"({"suite": "s", "methods": [{"name": "c", "set": {}}], "cases": [)" + ok_case + "]}",
+       "t.json: methods[0].method: expected one of reference, basic, full, normals, got none"},
+      {R"({"suite": "s", "methods": ["full"], "cases": [{"name": "a", "set": {}, "methods": ["basic"]}]})",
+       "t.json: cases[0].methods[0]: expected the name of one of the suite's methods, got "
+       "\"basic\""},
+      {R"({"suite": "s", "terms": ["sun", "moon"], "cases": [)" + ok_case + "]}",
+       "t.json: terms[1]: expected one of sun, sky, sea, air, all, got \"moon\""},
+      {R"({"suite": "s", "terms": ["sun"], "cases": [)" + ok_case + "]}",
+       "t.json: flicker.terms[0]: expected one of the suite's terms, got \"all\""},
+      {R"({"suite": "s", "flicker": {"frames": 2, "dt": 0}, "cases": [)" + ok_case + "]}",
+       "t.json: flicker.dt: expected a number in (0, 3600] (s), got 0"},
+      {R"({"suite": "s", "reference": {"pixel_samples": 0.5}, "cases": [)" + ok_case + "]}",
+       "t.json: reference.pixel_samples: expected an integer in [1, 4096], got 0.5"},
+      {R"({"suite": "s", "horizon": {"depth_deg": 5, "bin_deg": 6}, "cases": [)" + ok_case + "]}",
+       "t.json: horizon.bin_deg: expected a number in (0, 5] (degrees; at most depth_deg), got 6"},
+      {R"({"suite": "s", "base": {"image.width": 0}, "cases": [)" + ok_case + "]}",
+       "t.json: base.image.width: expected an integer in [1, 8192]..."},
+  };
+  for (const auto& b : bad) {
+    const std::string got = error_of(b.text);
+    ASSERT_FALSE(got.empty()) << "accepted: " << b.text;
+    EXPECT_EQ(got.find('\n'), std::string::npos) << got;
+    if (b.message.size() > 3 && b.message.ends_with("...")) {
+      EXPECT_EQ(got.rfind(b.message.substr(0, b.message.size() - 3), 0), 0u)
+          << "got: " << got << "\nfor: " << b.text;
+    } else {
+      EXPECT_EQ(got, b.message) << "for: " << b.text;
+    }
+  }
+  // A missing file; and a suite error is a scene error (exit status 2 on the command line).
+  try {
+    load_suite_file("/nonexistent/suite.json");
+    FAIL();
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(),
+                 "/nonexistent/suite.json: expected a readable suite file, got no such file");
+  }
+}
+
+}  // namespace
+}  // namespace thalassa::validation

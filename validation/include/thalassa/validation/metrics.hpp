@@ -1,0 +1,195 @@
+// thalassa — error metrics of a rendering method against the reference image of the same view
+// (issue 6, point 3; docs/validation.md gives the definitions with the choices made):
+//
+// - each image row's total radiance and its ratio to the reference's (Bruneton, Neyret &
+//   Holzschuch 2010, sec. 7.2 and the right column of fig. 10);
+// - relative L1 and RMS errors over the pixels that see the sea;
+// - the near-horizon metric of Tessendorf, Gao & Reinhardt 2023 (sec. 5 and 6): the
+//   azimuth-averaged mean and standard deviation of the luminance difference, binned by the angle
+//   below the horizon from 0 to 5 degrees;
+// - temporal flicker between consecutive frames.
+//
+// Everything is in double on the CPU, on linear RGB float images (thalassa::Image: spectral
+// radiance, W m^-2 sr^-1 nm^-1 at 680, 550, 440 nm). The functions only take images: the caller
+// renders each light term (sun, sky, sea) as its own image and compares them one by one.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "thalassa/engine/image.hpp"
+#include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/sea_surface.hpp"
+#include "thalassa/planet/camera_frame.hpp"
+
+namespace thalassa::validation {
+
+// Luminance of linear RGB with the Rec. 709 / sRGB weights, as the GPU tests and the environment
+// map do (the channels are radiance at 680, 550 and 440 nm, near enough to Rec. 709's primaries
+// for a weighting that only ranks and averages).
+inline constexpr double kLuminanceR = 0.2126;
+inline constexpr double kLuminanceG = 0.7152;
+inline constexpr double kLuminanceB = 0.0722;
+double luminance(const float* rgb);
+
+// One quantity for the luminance and for each channel (units: those of the quantity).
+struct ChannelValues {
+  double l = 0.0;  // luminance (kLuminance* weights)
+  double r = 0.0;  // 680 nm
+  double g = 0.0;  // 550 nm
+  double b = 0.0;  // 440 nm
+};
+
+// Which pixels a metric covers: inside[y * width + x] != 0, rows top first as in Image.
+struct PixelMask {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> inside;
+
+  bool operator()(int x, int y) const {
+    return inside[static_cast<std::size_t>(y) * width + x] != 0;
+  }
+  int count() const;
+  static PixelMask all(int width, int height);  // every pixel
+};
+
+// The view of a scene, per pixel, in the east-north-up frame at the camera's nadir (x east,
+// y north, z up; metres), in double: whether the pixel's centre ray meets the sea at rest (the
+// WGS84 or spherical quadric of ocean/sea_surface.hpp), its angle below the horizon in its own
+// azimuth, and its area in the (azimuth, angle below the horizon) plane. Pixel (x, y) has its
+// centre at u = 2 (x + 0.5) / width - 1, v = 1 - 2 (y + 0.5) / height, as the renderer's.
+class ViewGeometry {
+ public:
+  // From the scene's image size, camera and planet.
+  explicit ViewGeometry(const Scene& scene);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // The pixels whose centre ray meets the sea at rest (ocean::sea_surface_distance).
+  const PixelMask& sea_mask() const { return sea_; }
+  // Radians below the horizon of the pixel centre's ray, in the ray's own azimuth:
+  // beta = atan(ray's tan(dip)) - atan(ocean::sea_surface_horizon_dip of its azimuth); positive
+  // below the horizon (the ray meets the sea exactly when beta >= 0), negative above it.
+  double below_horizon(int x, int y) const { return beta_[index(x, y)]; }
+  // |d(azimuth, beta) / d(x, y)|: the pixel's area in the plane of azimuth (clockwise from
+  // north) and angle below the horizon, rad^2 per pixel (central differences at +-0.5 pixel).
+  // Weighting a pixel by it makes a sum over pixels an integral d(azimuth) d(beta), so that an
+  // average over a band is uniform in azimuth as paper 004's equirectangular rows are.
+  double azimuth_weight(int x, int y) const { return weight_[index(x, y)]; }
+  // The unit direction of pixel (x, y)'s centre ray (nadir ENU).
+  glm::dvec3 ray(double x, double y) const;
+  const ocean::SeaSurface& sea_surface() const { return surface_; }
+  double camera_height() const { return camera_height_; }  // m above the sea at rest
+
+ private:
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  // Azimuth (rad, clockwise from north) and beta (rad) of the ray through (x, y) (pixels).
+  glm::dvec2 azimuth_and_beta(double x, double y) const;
+
+  int width_ = 0, height_ = 0;
+  CameraBasis basis_;
+  double tan_half_fov_y_ = 0.0, aspect_ = 1.0;
+  ocean::SeaSurface surface_;
+  double camera_height_ = 0.0;
+  PixelMask sea_;
+  std::vector<double> beta_, weight_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Per-row radiance (paper 000, fig. 10, right column).
+
+// Each row's sum of the pixels inside `mask` (every pixel when null), top row first,
+// W m^-2 sr^-1 nm^-1 summed over pixels.
+std::vector<ChannelValues> row_totals(const Image& image, const PixelMask* mask = nullptr);
+// method / reference per row and channel; NaN where the reference's total is not positive
+// (a row without sea, or black in that term): the ratio is undefined there.
+std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
+                                      const std::vector<ChannelValues>& reference);
+// The largest |ratio - 1| of the luminance over the rows where it is defined (0 when none is):
+// one number for "each row's total within x% of the reference" (issue 6, point 1).
+double max_row_deviation(const std::vector<ChannelValues>& ratios);
+
+// ---------------------------------------------------------------------------------------------
+// Relative errors over the sea.
+
+struct ErrorStats {
+  int pixels = 0;  // pixels inside the mask
+  // sum |m - r| / sum |r|: the relative L1 error (NaN when the reference is 0 everywhere in the
+  // mask and the method is not; 0 when both are).
+  ChannelValues relative_l1;
+  // sqrt(sum (m - r)^2 / sum r^2): the relative RMS error (same conventions).
+  ChannelValues relative_rms;
+  ChannelValues mean_abs;        // sum |m - r| / pixels, W m^-2 sr^-1 nm^-1
+  ChannelValues reference_mean;  // sum r / pixels, W m^-2 sr^-1 nm^-1 (for scale)
+};
+ErrorStats relative_errors(const Image& method, const Image& reference, const PixelMask& mask);
+
+// ---------------------------------------------------------------------------------------------
+// Near the horizon (paper 004, sec. 5 and 6).
+
+struct HorizonBandOptions {
+  double depth_deg = 5.0;  // the band: from the horizon to this angle below it, degrees
+  double bin_deg = 0.5;    // width of an angle bin, degrees (10 bins in 5 degrees)
+};
+
+struct HorizonBin {
+  double beta_lo_deg = 0.0, beta_hi_deg = 0.0;  // degrees below the horizon, [lo, hi)
+  int pixels = 0;                               // pixel centres inside the bin
+  double weight = 0.0;  // sum of ViewGeometry::azimuth_weight, rad^2 (the bin's area seen)
+  // Luminance of D = L_method - L_reference over the bin, each pixel weighted by its
+  // azimuth_weight: the azimuth-averaged mean and standard deviation (W m^-2 sr^-1 nm^-1);
+  // NaN when the bin is empty.
+  double mean = 0.0;
+  double std = 0.0;
+  double reference_mean = 0.0;  // the reference's mean luminance over the bin, same weights
+};
+
+struct HorizonBand {
+  std::vector<HorizonBin> bins;  // from the horizon down, depth_deg / bin_deg of them (rounded up)
+  // Averages over the non-empty bins, each bin counting once (uniform in angle, as paper 004's
+  // fig. 14 averages its curves over 0 to 5 degrees); NaN when every bin is empty (the horizon
+  // is not in view).
+  double mean = 0.0;
+  double std = 0.0;
+  double reference_mean = 0.0;
+  int pixels = 0;  // pixels in the band
+};
+
+// Pixels whose centre lies from 0 (inclusive) to depth_deg (exclusive) below the horizon.
+HorizonBand horizon_band(const Image& method, const Image& reference, const ViewGeometry& view,
+                         const HorizonBandOptions& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// Temporal flicker.
+
+// Frames of one view at equal time steps: the mean over consecutive pairs of
+//   sum_mask |L_{k+1} - L_k| / sum_mask (L_{k+1} + L_k) / 2        (luminance),
+// the relative change of the sea from one frame to the next (0 for identical frames; NaN with
+// fewer than two frames or a black sea). The true sea moves, so the reference flickers too: a
+// method flickers more than the truth when its value exceeds the reference's.
+double flicker(std::span<const Image> frames, const PixelMask& mask);
+// How far a method's frame-to-frame changes are from the reference's:
+//   sum_k sum_mask |dL_method - dL_reference| / sum_k sum_mask |dL_reference|,
+// dL = L_{k+1} - L_k (luminance); 0 when the method changes exactly as the reference does, NaN
+// when the reference does not change and the method does, or with fewer than two frames.
+double temporal_error(std::span<const Image> method, std::span<const Image> reference,
+                      const PixelMask& mask);
+
+// ---------------------------------------------------------------------------------------------
+// Everything at once, for one light term of one method (the reference compared with itself
+// gives ratios of 1 and zero errors).
+
+struct TermMetrics {
+  std::vector<ChannelValues> row_totals;  // over the sea mask, top row first
+  std::vector<ChannelValues> row_ratios;  // to the reference's row totals (NaN: undefined)
+  double max_row_deviation = 0.0;         // of row_ratios
+  ErrorStats error;                       // over the sea mask
+  HorizonBand horizon;
+};
+TermMetrics compare_images(const Image& method, const Image& reference, const ViewGeometry& view,
+                           const HorizonBandOptions& options = {});
+
+}  // namespace thalassa::validation

@@ -1,0 +1,101 @@
+// thalassa — the validation report (issue 6, point 4): every number of a suite's run as CSV and
+// JSON, per-row radiance plots like fig. 10 of Bruneton et al. 2010, an error-against-frame-time
+// plot per case, the near-horizon curves of Tessendorf et al. 2023, and an index.html that shows
+// the images, plots and tables together (relative links). docs/validation.md lists the files.
+//
+// Plots are PNGs drawn by gnuplot (Debian: gnuplot-nox, pngcairo terminal), run as a
+// subprocess on a data file and a script written beside each plot (so that a plot can be
+// redrawn by hand: cd DIR/plots && gnuplot NAME.gp). A missing gnuplot is a ReportError
+// (exit status 1), never a silent skip.
+#pragma once
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "thalassa/validation/metrics.hpp"
+#include "thalassa/validation/suite.hpp"
+
+namespace thalassa::validation {
+
+// Writing the report failed at run time (gnuplot missing or failing, a file not writable).
+class ReportError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// One light term of one method on one case.
+struct TermResult {
+  std::string term;       // one of kTerms ("sun", "sky", "sea", "air", "all")
+  double frame_ms = 0.0;  // the frame's time, ms (RenderStats::frame_ms: median GPU time)
+  std::string exr;        // the image, relative to the report's folder ("" when not written)
+  std::string png;        // its tone-mapped PNG, relative to the report's folder
+  TermMetrics metrics;    // against the case's reference (compare_images)
+  // Over the suite's flicker frames, when this term is one of FlickerSettings::terms.
+  std::optional<double> flicker;         // validation::flicker of this method's frames
+  std::optional<double> temporal_error;  // validation::temporal_error against the reference's
+};
+
+// One method (or variant) on one case.
+struct MethodResult {
+  std::string name;               // SuiteMethod::name
+  std::string method;             // SuiteMethod::method
+  bool plain = true;              // SuiteMethod::plain(): on the per-row plots
+  std::vector<TermResult> terms;  // in the suite's term order
+  // The reference only, with ReferenceSettings::check_convergence: per term, the largest
+  // |row total at twice the samples / row total - 1| (max_row_deviation).
+  std::vector<std::pair<std::string, double>> convergence;
+};
+
+struct CaseResult {
+  std::string name;
+  std::string description;
+  std::vector<SceneOverride> set;  // the case's overrides (for the table)
+  int expected_exit = 0;
+  std::string expected_error;
+  // What the case ended with: exit status and its one-line message ("" when it rendered).
+  int exit_status = 0;
+  std::string message;
+  double camera_height = 0.0;         // m, for the tables
+  std::vector<MethodResult> methods;  // empty for a case that was not rendered
+  // The case passed: it ended as expected (expected_exit, and expected_error in the message).
+  bool passed() const;
+};
+
+struct Report {
+  std::string suite;        // Suite::name
+  std::string description;  // Suite::description
+  std::string source;       // the suite file
+  std::string backend;      // RenderStats::backend
+  std::string renderer;     // RenderStats::renderer (GL_RENDERER)
+  std::string version;      // thalassa's version
+  HorizonBandOptions horizon;
+  std::vector<CaseResult> cases;
+};
+
+struct ReportOptions {
+  std::string gnuplot;                      // the gnuplot program; empty: "gnuplot" found on PATH
+  int plot_width = 800, plot_height = 500;  // pixels of each plot
+};
+
+// The gnuplot program that write_report will run (options.gnuplot, or "gnuplot" on PATH); a
+// ReportError saying how to install it when there is none. The validate command calls it before
+// rendering anything, so that a missing gnuplot costs no render.
+std::string find_gnuplot(const ReportOptions& options = {});
+
+// Writes the report into `dir` (created if missing), every file atomically:
+//   results.json, metrics.csv, rows.csv, horizon.csv, cases.csv, index.html,
+//   plots/<case>_<term>_rows.{dat,gp,png}      row totals and ratios (fig. 10)
+//   plots/<case>_error_time.{dat,gp,png}       relative L1 error against frame time
+//   plots/<case>_<term>_horizon.{dat,gp,png}   near-horizon mean and std (paper 004, fig. 5)
+// Returns the paths written, relative to `dir`. Throws ReportError.
+std::vector<std::string> write_report(const Report& report, const std::string& dir,
+                                      const ReportOptions& options = {});
+
+// The JSON text of results.json (the report's every number; NaN, an undefined ratio or error,
+// is null), and its reading back, for tools and tests.
+std::string report_json(const Report& report);
+Report report_from_json(const std::string& json_text);
+
+}  // namespace thalassa::validation

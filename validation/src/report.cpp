@@ -1,0 +1,793 @@
+// The validation report (thalassa/validation/report.hpp; the files are listed in
+// docs/validation.md).
+#include "thalassa/validation/report.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "thalassa/engine/file_io.hpp"
+
+extern char** environ;
+
+namespace thalassa::validation {
+namespace {
+
+namespace fs = std::filesystem;
+using ojson = nlohmann::ordered_json;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ---------------------------------------------------------------------------------------------
+// Text
+
+// A number that reads back to the same double (%.17g); NaN (undefined) as `nan_text`.
+std::string number(double x, const char* nan_text = "") {
+  if (std::isnan(x)) return nan_text;
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x);
+  return buf;
+}
+
+// A CSV field (RFC 4180): quoted when it holds a comma, a quote or a line break.
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string csv_line(const std::vector<std::string>& fields) {
+  std::string line;
+  for (std::size_t i = 0; i < fields.size(); ++i) line += (i ? "," : "") + csv_field(fields[i]);
+  return line + "\n";
+}
+
+std::string html(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+// A number for people: 4 significant digits, "–" when undefined.
+std::string short_number(double x) {
+  if (std::isnan(x)) return "&ndash;";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", x);
+  return buf;
+}
+
+std::string overrides_text(const std::vector<SceneOverride>& set) {
+  std::string s;
+  for (const SceneOverride& o : set) s += (s.empty() ? "" : " ") + o.assignment();
+  return s;
+}
+
+const MethodResult* reference_of(const CaseResult& c) {
+  for (const MethodResult& m : c.methods)
+    if (m.method == "reference" && m.plain) return &m;
+  return nullptr;
+}
+
+const TermResult* term_of(const MethodResult& m, const std::string& term) {
+  for (const TermResult& t : m.terms)
+    if (t.term == term) return &t;
+  return nullptr;
+}
+
+// The terms of a case in first-seen order.
+std::vector<std::string> case_terms(const CaseResult& c) {
+  std::vector<std::string> terms;
+  for (const MethodResult& m : c.methods)
+    for (const TermResult& t : m.terms)
+      if (std::find(terms.begin(), terms.end(), t.term) == terms.end()) terms.push_back(t.term);
+  return terms;
+}
+
+// ---------------------------------------------------------------------------------------------
+// JSON
+
+ojson channels_json(const ChannelValues& v) {
+  ojson j;
+  j["l"] = v.l;
+  j["r"] = v.r;
+  j["g"] = v.g;
+  j["b"] = v.b;
+  return j;
+}
+
+ojson rows_json(const std::vector<ChannelValues>& rows) {
+  ojson a = ojson::array();
+  for (const ChannelValues& v : rows) a.push_back({v.l, v.r, v.g, v.b});
+  return a;
+}
+
+double get_number(const ojson& j) { return j.is_null() ? kNaN : j.get<double>(); }
+
+ChannelValues channels_from(const ojson& j) {
+  return {get_number(j.at("l")), get_number(j.at("r")), get_number(j.at("g")),
+          get_number(j.at("b"))};
+}
+
+std::vector<ChannelValues> rows_from(const ojson& a) {
+  std::vector<ChannelValues> rows;
+  for (const ojson& v : a)
+    rows.push_back(
+        {get_number(v.at(0)), get_number(v.at(1)), get_number(v.at(2)), get_number(v.at(3))});
+  return rows;
+}
+
+std::optional<double> optional_from(const ojson& j, const char* key) {
+  if (!j.contains(key)) return std::nullopt;
+  return get_number(j.at(key));
+}
+
+// ---------------------------------------------------------------------------------------------
+// gnuplot
+
+std::string find_on_path(const std::string& program) {
+  if (program.find('/') != std::string::npos)
+    return access(program.c_str(), X_OK) == 0 ? program : "";
+  const char* path = std::getenv("PATH");
+  std::stringstream folders(path ? path : "");
+  for (std::string folder; std::getline(folders, folder, ':');) {
+    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / program;
+    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return "";
+}
+
+// Runs `gnuplot script` in `dir` with stdin from /dev/null and its output into `log`; its exit
+// status, or -1 when it could not be run or was killed.
+int run_in(const std::string& dir, const std::vector<std::string>& argv, const std::string& log) {
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  pid_t pid = 0;
+  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Writes NAME.dat and NAME.gp into `plots` and runs gnuplot on the script, which must write
+// its PNG to the file named by gnuplot variable `out` (a pending name, renamed into place when
+// gnuplot succeeds). Returns the PNG's file name.
+std::string draw(const std::string& gnuplot, const fs::path& plots, const std::string& name,
+                 const std::string& data, const std::string& script, const ReportOptions& options) {
+  const std::string png = name + ".png";
+  const std::string pending = "." + png + ".tmp-" + std::to_string(getpid());
+  write_text_atomically((plots / (name + ".dat")).string(), data);
+  const std::string header =
+      "# Drawn by thalassa validate; redraw with: gnuplot " + name + ".gp (in this folder).\n" +
+      "if (!exists(\"out\")) out = '" + png + "'\n" + "set terminal pngcairo size " +
+      std::to_string(options.plot_width) + "," + std::to_string(options.plot_height) +
+      " noenhanced font ',10'\n" + "set output out\nset datafile missing 'NaN'\n";
+  write_text_atomically((plots / (name + ".gp")).string(), header + script);
+  const std::string log = (plots / ("." + name + ".log")).string();
+  const int status =
+      run_in(plots.string(), {gnuplot, "-e", "out='" + pending + "'", name + ".gp"}, log);
+  std::string output;
+  {
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    output = text.str();
+  }
+  std::error_code ec;
+  fs::remove(log, ec);
+  if (status != 0 || !fs::is_regular_file(plots / pending, ec)) {
+    fs::remove(plots / pending, ec);
+    while (!output.empty() && (output.back() == '\n' || output.back() == '\r')) output.pop_back();
+    std::replace(output.begin(), output.end(), '\n', ' ');
+    throw ReportError((plots / png).string() + ": gnuplot failed (status " +
+                      std::to_string(status) + ")" + (output.empty() ? "" : ": " + output));
+  }
+  fs::rename(plots / pending, plots / png, ec);
+  if (ec) throw ReportError((plots / png).string() + ": cannot rename into place: " + ec.message());
+  return png;
+}
+
+// Fig. 10's right column: each plain method's row totals (luminance over the sea) and their
+// ratio to the reference's, row 0 at the top of the image.
+std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
+                      const std::string& term, const ReportOptions& options) {
+  std::vector<std::pair<std::string, const TermResult*>> curves;
+  for (const MethodResult& m : c.methods)
+    if (m.plain)
+      if (const TermResult* t = term_of(m, term)) curves.push_back({m.name, t});
+  if (curves.empty()) return "";
+  std::size_t rows = 0;
+  for (const auto& [name, t] : curves) rows = std::max(rows, t->metrics.row_totals.size());
+  std::string data = "# row";
+  for (const auto& [name, t] : curves) data += " total_" + name + " ratio_" + name;
+  data += "\n# totals: luminance summed over the row's sea pixels, W m^-2 sr^-1 nm^-1\n";
+  for (std::size_t y = 0; y < rows; ++y) {
+    data += std::to_string(y);
+    for (const auto& [name, t] : curves) {
+      const auto& tot = t->metrics.row_totals;
+      const auto& rat = t->metrics.row_ratios;
+      data += " " + number(y < tot.size() ? tot[y].l : kNaN, "NaN");
+      data += " " + number(y < rat.size() ? rat[y].l : kNaN, "NaN");
+    }
+    data += "\n";
+  }
+  const std::string name = c.name + "_" + term + "_rows";
+  std::string script = "set multiplot layout 2,1 title '" + c.name + ", " + term +
+                       ": total radiance per image row (fig. 10)'\n"
+                       "set key outside right\nset grid\nset xlabel 'image row (0 = top)'\n"
+                       "set xrange [0:" +
+                       std::to_string(rows > 0 ? rows - 1 : 0) +
+                       "]\n"
+                       "set ylabel 'row total luminance (W m^-2 sr^-1 nm^-1)'\nplot ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    script += std::string(i ? ", " : "") + "'" + name +
+              ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 title '" +
+              curves[i].first + "'";
+  script += "\nset ylabel 'ratio to the reference'\nplot ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    script += std::string(i ? ", " : "") + "'" + name +
+              ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 title '" +
+              curves[i].first + "'";
+  script += "\nunset multiplot\n";
+  return draw(gnuplot, plots, name, data, script, options);
+}
+
+// Every method and variant: its relative L1 error over the sea against its frame time, one
+// series per term; the reference's time as a dashed line per term.
+std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
+                            const ReportOptions& options) {
+  const std::vector<std::string> terms = case_terms(c);
+  if (terms.empty()) return "";
+  std::string data = "# method";
+  for (const std::string& t : terms) data += " frame_ms_" + t + " relative_l1_" + t;
+  data += "\n";
+  for (const MethodResult& m : c.methods) {
+    if (m.method == "reference" && m.plain) continue;
+    data += m.name;
+    for (const std::string& term : terms) {
+      const TermResult* t = term_of(m, term);
+      data += " " + number(t ? t->frame_ms : kNaN, "NaN") + " " +
+              number(t ? t->metrics.error.relative_l1.l : kNaN, "NaN");
+    }
+    data += "\n";
+  }
+  const std::string name = c.name + "_error_time";
+  std::string script = "set title '" + c.name +
+                       ": relative L1 error of the luminance over the sea against frame time'\n"
+                       "set key outside right\nset grid\nset logscale x\n"
+                       "set xlabel 'frame time (ms)'\nset ylabel 'relative L1 error'\n"
+                       "set yrange [0:*]\n";
+  // The x range covers every time, the reference's included (arrows do not widen it).
+  double lo = HUGE_VAL, hi = 0.0;
+  for (const MethodResult& m : c.methods)
+    for (const TermResult& t : m.terms)
+      if (t.frame_ms > 0.0 && std::isfinite(t.frame_ms)) {
+        lo = std::min(lo, t.frame_ms);
+        hi = std::max(hi, t.frame_ms);
+      }
+  if (hi > 0.0) script += "set xrange [" + number(lo / 1.5) + ":" + number(hi * 1.5) + "]\n";
+  if (const MethodResult* ref = reference_of(c)) {
+    int i = 0;
+    for (const std::string& term : terms) {
+      const TermResult* t = term_of(*ref, term);
+      if (!t || !(t->frame_ms > 0.0)) continue;
+      script += "set arrow " + std::to_string(++i) + " from " + number(t->frame_ms) +
+                ", graph 0 to " + number(t->frame_ms) + ", graph 1 nohead dt 2 lc rgb 'gray40'\n";
+      script += "set label " + std::to_string(i) + " 'reference (" + term + ")' at " +
+                number(t->frame_ms) + ", graph " + number(0.95 - 0.05 * i) +
+                " right offset -0.5,0\n";
+    }
+  }
+  script += "plot ";
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    const std::string x = std::to_string(2 + 2 * i), y = std::to_string(3 + 2 * i);
+    script += std::string(i ? ", " : "") + "'" + name + ".dat' using " + x + ":" + y +
+              " with points pt 7 ps 1.2 title '" + terms[i] + "'";
+  }
+  // The methods' names beside the last term's points only (the terms' points of one method
+  // would print its name once each, on top of one another).
+  const std::string x = std::to_string(2 * terms.size()), y = std::to_string(2 * terms.size() + 1);
+  script +=
+      ", '" + name + ".dat' using " + x + ":" + y + ":1 with labels offset 0,0.8 font ',8' notitle";
+  script += "\n";
+  return draw(gnuplot, plots, name, data, script, options);
+}
+
+// Paper 004, fig. 5: the azimuth-averaged mean and standard deviation of the luminance
+// difference to the reference, against the angle below the horizon.
+std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
+                         const std::string& term, const ReportOptions& options) {
+  std::vector<std::pair<std::string, const TermResult*>> curves;
+  for (const MethodResult& m : c.methods) {
+    if (m.method == "reference" && m.plain) continue;
+    const TermResult* t = term_of(m, term);
+    if (t && t->metrics.horizon.pixels > 0) curves.push_back({m.name, t});
+  }
+  if (curves.empty()) return "";
+  std::string data = "# beta_mid_deg";
+  for (const auto& [name, t] : curves) data += " mean_" + name + " std_" + name;
+  data += "\n# luminance difference method - reference, W m^-2 sr^-1 nm^-1\n";
+  const std::size_t bins = curves.front().second->metrics.horizon.bins.size();
+  for (std::size_t k = 0; k < bins; ++k) {
+    const HorizonBin& b0 = curves.front().second->metrics.horizon.bins[k];
+    data += number(0.5 * (b0.beta_lo_deg + b0.beta_hi_deg));
+    for (const auto& [name, t] : curves) {
+      const auto& bs = t->metrics.horizon.bins;
+      data += " " + number(k < bs.size() ? bs[k].mean : kNaN, "NaN") + " " +
+              number(k < bs.size() ? bs[k].std : kNaN, "NaN");
+    }
+    data += "\n";
+  }
+  const std::string name = c.name + "_" + term + "_horizon";
+  std::string script =
+      "set multiplot layout 1,2 title '" + c.name + ", " + term +
+      ": luminance difference to the reference near the horizon (Tessendorf et al. 2023)'\n"
+      "set key outside bottom center horizontal font ',8'\nset grid\n"
+      "set xlabel 'degrees below the horizon'\n"
+      "set xrange [0:*]\n"
+      "set ylabel 'azimuth-averaged mean (W m^-2 sr^-1 nm^-1)'\nplot ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    script += std::string(i ? ", " : "") + "'" + name +
+              ".dat' using 1:" + std::to_string(2 + 2 * i) + " with linespoints title '" +
+              curves[i].first + "'";
+  // The same key under both panels keeps their axes the same height.
+  script += "\nset ylabel 'azimuth-averaged standard deviation'\nplot ";
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    script += std::string(i ? ", " : "") + "'" + name +
+              ".dat' using 1:" + std::to_string(3 + 2 * i) + " with linespoints title '" +
+              curves[i].first + "'";
+  script += "\nunset multiplot\n";
+  return draw(gnuplot, plots, name, data, script, options);
+}
+
+// ---------------------------------------------------------------------------------------------
+// CSV
+
+std::string metrics_csv(const Report& report) {
+  std::string csv = csv_line({"case",
+                              "method",
+                              "kind",
+                              "term",
+                              "frame_ms",
+                              "sea_pixels",
+                              "rel_l1_l",
+                              "rel_l1_r",
+                              "rel_l1_g",
+                              "rel_l1_b",
+                              "rel_rms_l",
+                              "rel_rms_r",
+                              "rel_rms_g",
+                              "rel_rms_b",
+                              "mean_abs_l",
+                              "reference_mean_l",
+                              "max_row_deviation",
+                              "horizon_mean",
+                              "horizon_std",
+                              "horizon_reference_mean",
+                              "horizon_pixels",
+                              "flicker",
+                              "reference_flicker",
+                              "temporal_error",
+                              "exr",
+                              "png"});
+  for (const CaseResult& c : report.cases) {
+    const MethodResult* ref = reference_of(c);
+    for (const MethodResult& m : c.methods) {
+      for (const TermResult& t : m.terms) {
+        const ErrorStats& e = t.metrics.error;
+        const HorizonBand& h = t.metrics.horizon;
+        const TermResult* rt = ref ? term_of(*ref, t.term) : nullptr;
+        csv += csv_line({c.name,
+                         m.name,
+                         m.method,
+                         t.term,
+                         number(t.frame_ms),
+                         std::to_string(e.pixels),
+                         number(e.relative_l1.l),
+                         number(e.relative_l1.r),
+                         number(e.relative_l1.g),
+                         number(e.relative_l1.b),
+                         number(e.relative_rms.l),
+                         number(e.relative_rms.r),
+                         number(e.relative_rms.g),
+                         number(e.relative_rms.b),
+                         number(e.mean_abs.l),
+                         number(e.reference_mean.l),
+                         number(t.metrics.max_row_deviation),
+                         number(h.mean),
+                         number(h.std),
+                         number(h.reference_mean),
+                         std::to_string(h.pixels),
+                         number(t.flicker.value_or(kNaN)),
+                         number(rt && rt->flicker ? *rt->flicker : kNaN),
+                         number(t.temporal_error.value_or(kNaN)),
+                         t.exr,
+                         t.png});
+      }
+    }
+  }
+  return csv;
+}
+
+std::string rows_csv(const Report& report) {
+  std::string csv = csv_line({"case", "method", "term", "row", "total_l", "total_r", "total_g",
+                              "total_b", "ratio_l", "ratio_r", "ratio_g", "ratio_b"});
+  for (const CaseResult& c : report.cases)
+    for (const MethodResult& m : c.methods)
+      for (const TermResult& t : m.terms) {
+        const auto& tot = t.metrics.row_totals;
+        const auto& rat = t.metrics.row_ratios;
+        for (std::size_t y = 0; y < tot.size(); ++y) {
+          const ChannelValues r = y < rat.size() ? rat[y] : ChannelValues{kNaN, kNaN, kNaN, kNaN};
+          csv += csv_line({c.name, m.name, t.term, std::to_string(y), number(tot[y].l),
+                           number(tot[y].r), number(tot[y].g), number(tot[y].b), number(r.l),
+                           number(r.r), number(r.g), number(r.b)});
+        }
+      }
+  return csv;
+}
+
+std::string horizon_csv(const Report& report) {
+  std::string csv = csv_line({"case", "method", "term", "beta_lo_deg", "beta_hi_deg", "pixels",
+                              "weight_rad2", "mean", "std", "reference_mean"});
+  for (const CaseResult& c : report.cases)
+    for (const MethodResult& m : c.methods)
+      for (const TermResult& t : m.terms)
+        for (const HorizonBin& b : t.metrics.horizon.bins)
+          csv += csv_line({c.name, m.name, t.term, number(b.beta_lo_deg), number(b.beta_hi_deg),
+                           std::to_string(b.pixels), number(b.weight), number(b.mean),
+                           number(b.std), number(b.reference_mean)});
+  return csv;
+}
+
+std::string cases_csv(const Report& report) {
+  std::string csv = csv_line({"case", "camera_height_m", "set", "expected_exit", "expected_error",
+                              "exit_status", "message", "passed"});
+  for (const CaseResult& c : report.cases)
+    csv += csv_line({c.name, number(c.camera_height), overrides_text(c.set),
+                     std::to_string(c.expected_exit), c.expected_error,
+                     std::to_string(c.exit_status), c.message, c.passed() ? "1" : "0"});
+  return csv;
+}
+
+// ---------------------------------------------------------------------------------------------
+// index.html
+
+std::string index_html(const Report& report,
+                       const std::vector<std::vector<std::pair<std::string, std::string>>>& plots) {
+  std::string h =
+      "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>thalassa "
+      "validate: " +
+      html(report.suite) +
+      "</title>\n<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:"
+      "collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
+      "th{background:#eee}td.t{text-align:left}img.thumb{width:240px}img.plot{max-width:"
+      "48%}.fail{color:#b00;font-weight:bold}</style>\n</head><body>\n";
+  h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
+  h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
+       "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+  h += "<p>Every number: <a href=\"results.json\">results.json</a>, <a "
+       "href=\"metrics.csv\">metrics.csv</a>, <a href=\"rows.csv\">rows.csv</a>, <a "
+       "href=\"horizon.csv\">horizon.csv</a>, <a href=\"cases.csv\">cases.csv</a>. Definitions: "
+       "docs/validation.md. Errors are over the pixels that see the sea; the horizon band is 0 "
+       "to " +
+       short_number(report.horizon.depth_deg) + " degrees below the horizon in bins of " +
+       short_number(report.horizon.bin_deg) + " degrees.</p>\n";
+  // Summary.
+  h += "<h2>Cases</h2>\n<table><tr><th>case</th><th>camera height (m)</th><th>overrides</th>"
+       "<th>expected</th><th>status</th><th>passed</th></tr>\n";
+  for (const CaseResult& c : report.cases)
+    h += "<tr><td class=\"t\"><a href=\"#" + html(c.name) + "\">" + html(c.name) + "</a></td><td>" +
+         short_number(c.camera_height) + "</td><td class=\"t\">" + html(overrides_text(c.set)) +
+         "</td><td>" + std::to_string(c.expected_exit) + "</td><td>" +
+         std::to_string(c.exit_status) + "</td><td" + (c.passed() ? ">yes" : " class=\"fail\">no") +
+         "</td></tr>\n";
+  h += "</table>\n";
+  for (std::size_t ci = 0; ci < report.cases.size(); ++ci) {
+    const CaseResult& c = report.cases[ci];
+    const MethodResult* ref = reference_of(c);
+    h += "<h2 id=\"" + html(c.name) + "\">" + html(c.name) + "</h2>\n<p>" + html(c.description) +
+         "</p>\n<p>Overrides: <code>" + html(overrides_text(c.set)) + "</code></p>\n";
+    if (!c.message.empty())
+      h += "<p" + std::string(c.passed() ? "" : " class=\"fail\"") + ">Exit status " +
+           std::to_string(c.exit_status) + ": " + html(c.message) + "</p>\n";
+    if (c.methods.empty()) continue;
+    const std::vector<std::string> terms = case_terms(c);
+    // Images: a row per method, a column per term.
+    h += "<table><tr><th>method</th>";
+    for (const std::string& t : terms) h += "<th>" + html(t) + "</th>";
+    h += "</tr>\n";
+    for (const MethodResult& m : c.methods) {
+      h += "<tr><td class=\"t\">" + html(m.name) + "</td>";
+      for (const std::string& term : terms) {
+        const TermResult* t = term_of(m, term);
+        h += "<td>";
+        if (t && !t->png.empty()) {
+          const std::string img = "<img class=\"thumb\" src=\"" + html(t->png) + "\" alt=\"" +
+                                  html(m.name + " " + term) + "\">";
+          h += t->exr.empty() ? img : "<a href=\"" + html(t->exr) + "\">" + img + "</a>";
+        }
+        h += "</td>";
+      }
+      h += "</tr>\n";
+    }
+    h += "</table>\n";
+    // Numbers.
+    h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>rel. L1</th><th>rel. "
+         "RMS</th><th>max |row ratio - 1|</th><th>horizon mean</th><th>horizon std</th>"
+         "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
+    for (const MethodResult& m : c.methods)
+      for (const TermResult& t : m.terms) {
+        const TermResult* rt = ref ? term_of(*ref, t.term) : nullptr;
+        h += "<tr><td class=\"t\">" + html(m.name) + "</td><td class=\"t\">" + html(t.term) +
+             "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
+             short_number(t.metrics.error.relative_l1.l) + "</td><td>" +
+             short_number(t.metrics.error.relative_rms.l) + "</td><td>" +
+             short_number(t.metrics.max_row_deviation) + "</td><td>" +
+             short_number(t.metrics.horizon.mean) + "</td><td>" +
+             short_number(t.metrics.horizon.std) + "</td><td>" +
+             short_number(t.flicker.value_or(kNaN)) + "</td><td>" +
+             short_number(rt && rt->flicker ? *rt->flicker : kNaN) + "</td><td>" +
+             short_number(t.temporal_error.value_or(kNaN)) + "</td></tr>\n";
+      }
+    h += "</table>\n";
+    if (!ref || ref->convergence.empty()) {
+    } else {
+      h += "<p>Reference convergence (largest row change at twice the samples):";
+      for (const auto& [term, change] : ref->convergence)
+        h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
+      h += "</p>\n";
+    }
+    h += "<p>";
+    for (const auto& [title, png] : plots[ci])
+      h += "<a href=\"" + html(png) + "\"><img class=\"plot\" src=\"" + html(png) + "\" alt=\"" +
+           html(title) + "\" title=\"" + html(title) + "\"></a>\n";
+    h += "</p>\n";
+  }
+  h += "</body></html>\n";
+  return h;
+}
+
+}  // namespace
+
+bool CaseResult::passed() const {
+  if (exit_status != expected_exit) return false;
+  return expected_error.empty() || message.find(expected_error) != std::string::npos;
+}
+
+std::string find_gnuplot(const ReportOptions& options) {
+  const std::string program = options.gnuplot.empty() ? "gnuplot" : options.gnuplot;
+  const std::string found = find_on_path(program);
+  if (found.empty())
+    throw ReportError("gnuplot is not installed (\"" + program +
+                      "\" not found on PATH), and the report's plots need it: on Debian, "
+                      "apt-get install gnuplot-nox (scripts/setup installs it)");
+  return found;
+}
+
+std::string report_json(const Report& report) {
+  ojson j;
+  j["suite"] = report.suite;
+  j["description"] = report.description;
+  j["source"] = report.source;
+  j["version"] = report.version;
+  j["backend"] = report.backend;
+  j["renderer"] = report.renderer;
+  j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
+  j["cases"] = ojson::array();
+  for (const CaseResult& c : report.cases) {
+    ojson jc;
+    jc["name"] = c.name;
+    jc["description"] = c.description;
+    jc["set"] = ojson::object();
+    for (const SceneOverride& o : c.set) jc["set"][o.key] = ojson::parse(o.value_json);
+    jc["expected_exit"] = c.expected_exit;
+    jc["expected_error"] = c.expected_error;
+    jc["exit_status"] = c.exit_status;
+    jc["message"] = c.message;
+    jc["passed"] = c.passed();
+    jc["camera_height"] = c.camera_height;
+    jc["methods"] = ojson::array();
+    for (const MethodResult& m : c.methods) {
+      ojson jm;
+      jm["name"] = m.name;
+      jm["method"] = m.method;
+      jm["plain"] = m.plain;
+      jm["convergence"] = ojson::object();
+      for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
+      jm["terms"] = ojson::array();
+      for (const TermResult& t : m.terms) {
+        const ErrorStats& e = t.metrics.error;
+        const HorizonBand& h = t.metrics.horizon;
+        ojson jt;
+        jt["term"] = t.term;
+        jt["frame_ms"] = t.frame_ms;
+        jt["exr"] = t.exr;
+        jt["png"] = t.png;
+        if (t.flicker) jt["flicker"] = *t.flicker;
+        if (t.temporal_error) jt["temporal_error"] = *t.temporal_error;
+        jt["max_row_deviation"] = t.metrics.max_row_deviation;
+        jt["error"] = {{"pixels", e.pixels},
+                       {"relative_l1", channels_json(e.relative_l1)},
+                       {"relative_rms", channels_json(e.relative_rms)},
+                       {"mean_abs", channels_json(e.mean_abs)},
+                       {"reference_mean", channels_json(e.reference_mean)}};
+        ojson bins = ojson::array();
+        for (const HorizonBin& b : h.bins)
+          bins.push_back({{"beta_lo_deg", b.beta_lo_deg},
+                          {"beta_hi_deg", b.beta_hi_deg},
+                          {"pixels", b.pixels},
+                          {"weight", b.weight},
+                          {"mean", b.mean},
+                          {"std", b.std},
+                          {"reference_mean", b.reference_mean}});
+        jt["horizon"] = {{"mean", h.mean},
+                         {"std", h.std},
+                         {"reference_mean", h.reference_mean},
+                         {"pixels", h.pixels},
+                         {"bins", bins}};
+        jt["rows"] = {{"columns", {"l", "r", "g", "b"}},
+                      {"total", rows_json(t.metrics.row_totals)},
+                      {"ratio", rows_json(t.metrics.row_ratios)}};
+        jm["terms"].push_back(std::move(jt));
+      }
+      jc["methods"].push_back(std::move(jm));
+    }
+    j["cases"].push_back(std::move(jc));
+  }
+  // NaN (an undefined ratio or error) is written as null.
+  return j.dump(1) + "\n";
+}
+
+Report report_from_json(const std::string& json_text) {
+  const ojson j = ojson::parse(json_text);
+  Report report;
+  report.suite = j.at("suite");
+  report.description = j.at("description");
+  report.source = j.at("source");
+  report.version = j.at("version");
+  report.backend = j.at("backend");
+  report.renderer = j.at("renderer");
+  report.horizon = {get_number(j.at("horizon").at("depth_deg")),
+                    get_number(j.at("horizon").at("bin_deg"))};
+  for (const ojson& jc : j.at("cases")) {
+    CaseResult c;
+    c.name = jc.at("name");
+    c.description = jc.at("description");
+    for (const auto& [key, value] : jc.at("set").items()) c.set.push_back({key, value.dump()});
+    c.expected_exit = jc.at("expected_exit");
+    c.expected_error = jc.at("expected_error");
+    c.exit_status = jc.at("exit_status");
+    c.message = jc.at("message");
+    c.camera_height = get_number(jc.at("camera_height"));
+    for (const ojson& jm : jc.at("methods")) {
+      MethodResult m;
+      m.name = jm.at("name");
+      m.method = jm.at("method");
+      m.plain = jm.at("plain");
+      for (const auto& [term, change] : jm.at("convergence").items())
+        m.convergence.push_back({term, get_number(change)});
+      for (const ojson& jt : jm.at("terms")) {
+        TermResult t;
+        t.term = jt.at("term");
+        t.frame_ms = get_number(jt.at("frame_ms"));
+        t.exr = jt.at("exr");
+        t.png = jt.at("png");
+        t.flicker = optional_from(jt, "flicker");
+        t.temporal_error = optional_from(jt, "temporal_error");
+        t.metrics.max_row_deviation = get_number(jt.at("max_row_deviation"));
+        const ojson& je = jt.at("error");
+        t.metrics.error.pixels = je.at("pixels");
+        t.metrics.error.relative_l1 = channels_from(je.at("relative_l1"));
+        t.metrics.error.relative_rms = channels_from(je.at("relative_rms"));
+        t.metrics.error.mean_abs = channels_from(je.at("mean_abs"));
+        t.metrics.error.reference_mean = channels_from(je.at("reference_mean"));
+        const ojson& jh = jt.at("horizon");
+        HorizonBand& h = t.metrics.horizon;
+        h.mean = get_number(jh.at("mean"));
+        h.std = get_number(jh.at("std"));
+        h.reference_mean = get_number(jh.at("reference_mean"));
+        h.pixels = jh.at("pixels");
+        for (const ojson& jb : jh.at("bins"))
+          h.bins.push_back({get_number(jb.at("beta_lo_deg")), get_number(jb.at("beta_hi_deg")),
+                            jb.at("pixels").get<int>(), get_number(jb.at("weight")),
+                            get_number(jb.at("mean")), get_number(jb.at("std")),
+                            get_number(jb.at("reference_mean"))});
+        t.metrics.row_totals = rows_from(jt.at("rows").at("total"));
+        t.metrics.row_ratios = rows_from(jt.at("rows").at("ratio"));
+        m.terms.push_back(std::move(t));
+      }
+      c.methods.push_back(std::move(m));
+    }
+    report.cases.push_back(std::move(c));
+  }
+  return report;
+}
+
+std::vector<std::string> write_report(const Report& report, const std::string& dir,
+                                      const ReportOptions& options) {
+  const std::string gnuplot = find_gnuplot(options);
+  std::error_code ec;
+  const fs::path root(dir), plots = root / "plots";
+  fs::create_directories(plots, ec);
+  if (ec) throw ReportError(plots.string() + ": cannot create the folder: " + ec.message());
+  std::vector<std::string> written;
+  const auto text = [&](const std::string& name, const std::string& content) {
+    try {
+      write_text_atomically((root / name).string(), content);
+    } catch (const FileError& e) {
+      throw ReportError(e.what());
+    }
+    written.push_back(name);
+  };
+  // Plots first: index.html links them, and is written last.
+  std::vector<std::vector<std::pair<std::string, std::string>>> plot_links;
+  try {
+    for (const CaseResult& c : report.cases) {
+      auto& links = plot_links.emplace_back();
+      const auto add = [&](const std::string& title, const std::string& png) {
+        if (png.empty()) return;
+        const std::string stem = png.substr(0, png.size() - 4);
+        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+        links.push_back({title, "plots/" + png});
+      };
+      if (c.methods.empty()) continue;
+      for (const std::string& term : case_terms(c))
+        add(c.name + " " + term + ": per-row radiance",
+            rows_plot(gnuplot, plots, c, term, options));
+      add(c.name + ": error against frame time", error_time_plot(gnuplot, plots, c, options));
+      for (const std::string& term : case_terms(c))
+        add(c.name + " " + term + ": near the horizon",
+            horizon_plot(gnuplot, plots, c, term, options));
+    }
+  } catch (const FileError& e) {
+    throw ReportError(e.what());
+  }
+  text("results.json", report_json(report));
+  text("metrics.csv", metrics_csv(report));
+  text("rows.csv", rows_csv(report));
+  text("horizon.csv", horizon_csv(report));
+  text("cases.csv", cases_csv(report));
+  text("index.html", index_html(report, plot_links));
+  return written;
+}
+
+}  // namespace thalassa::validation

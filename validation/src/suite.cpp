@@ -1,0 +1,479 @@
+// Suite files (thalassa/validation/suite.hpp; the format is in docs/validation.md).
+#include "thalassa/validation/suite.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+namespace thalassa::validation {
+namespace {
+
+// Ordered: overrides are applied in file order, as the user wrote them.
+using json = nlohmann::ordered_json;
+
+// ---------------------------------------------------------------------------------------------
+// Messages, in the form of scene and flight files' (engine/src/scene.cpp, planet/src/flight.cpp).
+
+std::string dump(const json& v) { return v.dump(-1, ' ', false, json::error_handler_t::replace); }
+
+std::string describe(const json& v) {
+  if (v.is_object()) return "an object";
+  if (v.is_array()) return v.empty() ? "an empty array" : "an array";
+  if (v.is_null()) return "null";
+  std::string s = dump(v);
+  if (s.size() > 60) s = s.substr(0, 57) + "...";
+  return s;
+}
+
+[[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
+                       std::string_view got) {
+  std::string msg = std::string(source) + ": " + (key.empty() ? "" : std::string(key) + ": ") +
+                    "expected " + std::string(expected) + ", got " + std::string(got);
+  std::replace_if(
+      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
+  throw SuiteError(msg);
+}
+
+// JSON with each object's keys given once (nlohmann would silently keep the last).
+json parse_strict(std::string_view text, std::string_view source) {
+  std::vector<std::string> path;
+  std::vector<std::vector<std::string>> seen;
+  const json::parser_callback_t no_repeated_keys = [&](int, json::parse_event_t event,
+                                                       json& parsed) {
+    if (event == json::parse_event_t::object_start) {
+      seen.emplace_back();
+    } else if (event == json::parse_event_t::object_end) {
+      seen.pop_back();
+    } else if (event == json::parse_event_t::key) {
+      const std::string key = parsed.get<std::string>();
+      auto& keys = seen.back();
+      path.resize(seen.size() - 1);
+      path.push_back(key);
+      if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
+        std::string dotted;
+        for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
+        fail(source, dotted, "each key once", "\"" + key + "\" a second time");
+      }
+      keys.push_back(key);
+    }
+    return true;
+  };
+  try {
+    return json::parse(text, no_repeated_keys);
+  } catch (const json::exception& e) {
+    std::string what = e.what();
+    if (what.rfind("[json.exception.", 0) == 0) {
+      const auto end = what.find("] ");
+      if (end != std::string::npos) what.erase(0, end + 2);
+    }
+    fail(source, "", "valid JSON", what);
+  }
+}
+
+std::string read_text_file(const std::string& path, std::string_view what, std::string_view source,
+                           std::string_view key) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const std::string expected = "a readable " + std::string(what);
+  const std::string where = source.empty() ? path : std::string(source);
+  const std::string named = source.empty() ? "" : "\"" + path + "\", ";
+  if (!fs::exists(path, ec)) fail(where, key, expected, named + "no such file");
+  if (fs::is_directory(path, ec)) fail(where, key, expected, named + "a directory");
+  std::ifstream in(path, std::ios::binary);
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (!in.good() && !in.eof()) fail(where, key, expected, named + "a read error");
+  return text;
+}
+
+std::string list_text(std::span<const std::string_view> items) {
+  std::string s;
+  for (auto k : items) s += (s.empty() ? "" : ", ") + std::string(k);
+  return s;
+}
+
+void only_known(const json& object, std::span<const std::string_view> allowed,
+                std::string_view source, const std::string& prefix) {
+  for (const auto& [name, value] : object.items()) {
+    if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+      fail(source, prefix + name,
+           "a known key (" + list_text(allowed) + "; see docs/validation.md)", "an unknown key");
+  }
+}
+
+bool is_name(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+std::string name_at(const json& v, std::string_view source, const std::string& key) {
+  if (!v.is_string() || !is_name(v.get<std::string>()))
+    fail(source, key, "a name of a-z, 0-9 and _", describe(v));
+  return v.get<std::string>();
+}
+
+std::string string_at(const json& v, std::string_view source, const std::string& key) {
+  if (!v.is_string()) fail(source, key, "a string", describe(v));
+  return v.get<std::string>();
+}
+
+std::string one_of(const json& v, std::span<const std::string_view> allowed,
+                   std::string_view source, const std::string& key) {
+  const std::string expected = "one of " + list_text(allowed);
+  if (!v.is_string()) fail(source, key, expected, describe(v));
+  const std::string s = v.get<std::string>();
+  if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
+    fail(source, key, expected, describe(v));
+  return s;
+}
+
+bool is_scene_key(std::string_view key) {
+  const auto& keys = scene_keys();
+  return std::any_of(keys.begin(), keys.end(), [&](const auto& k) { return k.path == key; });
+}
+
+// The overrides of a "set" (or "base") object. With check_values, each value gets the scene's
+// own check of its key (type, range, format).
+std::vector<SceneOverride> overrides_at(const json& v, std::string_view source,
+                                        const std::string& key, bool check_values) {
+  if (!v.is_object())
+    fail(source, key, "an object of scene keys in the dotted --set form ({\"camera.height\": 10})",
+         describe(v));
+  std::vector<SceneOverride> out;
+  for (const auto& [name, value] : v.items()) {
+    const std::string at = key + "." + name;
+    if (!is_scene_key(name)) fail(source, at, "a scene key (docs/scene.md)", "an unknown key");
+    if (!(value.is_number() || value.is_string() || value.is_boolean()))
+      fail(source, at, "a number, string or boolean", describe(value));
+    if (check_values) {
+      try {
+        check_scene_value(name, dump(value), source, key + ".");
+      } catch (const SceneError& e) {
+        throw SuiteError(e.what());  // "<source>: <key>.<name>: expected ..., got ..."
+      }
+    }
+    out.push_back({name, dump(value)});
+  }
+  return out;
+}
+
+// A number in [lo, hi] ((lo, hi] when lo_open).
+double number_at(const json& v, std::string_view source, const std::string& key, double lo,
+                 double hi, std::string_view unit, bool lo_open = false) {
+  char range[96];
+  std::snprintf(range, sizeof range, "a number in %s%g, %g]%s%s%s", lo_open ? "(" : "[", lo, hi,
+                unit.empty() ? "" : " (", std::string(unit).c_str(), unit.empty() ? "" : ")");
+  if (!v.is_number()) fail(source, key, range, describe(v));
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || x < lo || x > hi || (lo_open && x == lo))
+    fail(source, key, range, describe(v));
+  return x;
+}
+
+int integer_at(const json& v, std::string_view source, const std::string& key, int lo, int hi) {
+  const std::string expected =
+      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  if (!v.is_number_integer()) fail(source, key, expected, describe(v));
+  const auto x = v.get<long long>();
+  if (x < lo || x > hi) fail(source, key, expected, describe(v));
+  return static_cast<int>(x);
+}
+
+bool bool_at(const json& v, std::string_view source, const std::string& key) {
+  if (!v.is_boolean()) fail(source, key, "true or false", describe(v));
+  return v.get<bool>();
+}
+
+SuiteMethod parse_method(const json& m, std::string_view source, const std::string& at) {
+  SuiteMethod method;
+  if (m.is_string()) {  // shorthand: "full" is {"name": "full", "method": "full"}
+    method.method = one_of(m, kMethods, source, at);
+    method.name = method.method;
+    return method;
+  }
+  if (!m.is_object())
+    fail(source, at, "a method name or an object {\"name\": ..., \"method\": ..., \"set\": {...}}",
+         describe(m));
+  static constexpr std::string_view kKeys[] = {"name", "method", "description", "set"};
+  only_known(m, kKeys, source, at + ".");
+  if (!m.contains("name")) fail(source, at + ".name", "a name of a-z, 0-9 and _", "none");
+  method.name = name_at(m["name"], source, at + ".name");
+  if (!m.contains("method")) fail(source, at + ".method", "one of " + list_text(kMethods), "none");
+  method.method = one_of(m["method"], kMethods, source, at + ".method");
+  if (m.contains("description"))
+    method.description = string_at(m["description"], source, at + ".description");
+  if (m.contains("set")) method.set = overrides_at(m["set"], source, at + ".set", true);
+  return method;
+}
+
+std::vector<std::string> terms_at(const json& v, std::string_view source, const std::string& key) {
+  if (!v.is_array() || v.empty())
+    fail(source, key, "a non-empty array of light terms (" + list_text(kTerms) + ")", describe(v));
+  std::vector<std::string> terms;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const std::string at = key + "[" + std::to_string(i) + "]";
+    std::string t = one_of(v[i], kTerms, source, at);
+    if (std::find(terms.begin(), terms.end(), t) != terms.end())
+      fail(source, at, "each term once", "\"" + t + "\" a second time");
+    terms.push_back(std::move(t));
+  }
+  return terms;
+}
+
+// The base scene file's text (if any) under `assignments`, built; a scene error becomes one
+// naming `key`.
+void build_or_fail(const std::string& scene_text, const std::string& scene_file,
+                   const std::vector<std::string>& assignments, std::string_view source,
+                   const std::string& key) {
+  try {
+    SceneBuilder builder;
+    if (!scene_file.empty()) builder.load_text(scene_text, scene_file);
+    for (const std::string& a : assignments) builder.set(a);
+    builder.build();
+  } catch (const SceneError& e) {
+    fail(source, key, "a valid scene", e.what());
+  }
+}
+
+}  // namespace
+
+std::string terms_option(std::string_view term) {
+  return term == "all" ? "sun,sky,sea,air" : std::string(term);
+}
+
+const SuiteMethod* Suite::find_method(std::string_view n) const {
+  for (const SuiteMethod& m : methods)
+    if (m.name == n) return &m;
+  return nullptr;
+}
+
+const SuiteMethod* Suite::reference_method() const {
+  for (const SuiteMethod& m : methods)
+    if (m.method == "reference" && m.plain()) return &m;
+  return nullptr;
+}
+
+Suite load_suite_text(std::string_view json_text, std::string_view source,
+                      const std::string& base_dir) {
+  Suite suite;
+  suite.source = source;
+  const json doc = parse_strict(json_text, source);
+  if (!doc.is_object())
+    fail(source, "", "a JSON object (a suite, see docs/validation.md)", describe(doc));
+  static constexpr std::string_view kKeys[] = {"suite",   "description", "scene",   "base",
+                                               "methods", "terms",       "flicker", "reference",
+                                               "horizon", "cases"};
+  only_known(doc, kKeys, source, "");
+  if (!doc.contains("suite")) fail(source, "suite", "the suite's name (a-z, 0-9 and _)", "none");
+  suite.name = name_at(doc["suite"], source, "suite");
+  if (doc.contains("description"))
+    suite.description = string_at(doc["description"], source, "description");
+
+  // The base scene: a scene file relative to the suite's folder, then `base`'s overrides.
+  std::string scene_text;
+  if (doc.contains("scene")) {
+    const std::filesystem::path given = string_at(doc["scene"], source, "scene");
+    suite.scene_file =
+        (given.is_absolute() || base_dir.empty() ? given : std::filesystem::path(base_dir) / given)
+            .string();
+    scene_text = read_text_file(
+        suite.scene_file, "scene file (relative to the suite file's folder)", source, "scene");
+    try {
+      SceneBuilder().load_text(scene_text, suite.scene_file);
+    } catch (const SceneError& e) {
+      throw SuiteError(e.what());  // it names the scene file and the key
+    }
+  }
+  if (doc.contains("base")) suite.base = overrides_at(doc["base"], source, "base", true);
+  std::vector<std::string> base_assignments;
+  for (const SceneOverride& o : suite.base) base_assignments.push_back(o.assignment());
+  build_or_fail(scene_text, suite.scene_file, base_assignments, source, "base");
+
+  // Methods and variants.
+  if (doc.contains("methods")) {
+    const json& ms = doc["methods"];
+    if (!ms.is_array() || ms.empty())
+      fail(source, "methods", "a non-empty array of methods", describe(ms));
+    for (std::size_t i = 0; i < ms.size(); ++i) {
+      const std::string at = "methods[" + std::to_string(i) + "]";
+      SuiteMethod m = parse_method(ms[i], source, at);
+      if (suite.find_method(m.name))
+        fail(source, at + (ms[i].is_object() ? ".name" : ""), "a name not used before in methods",
+             "\"" + m.name + "\" a second time");
+      suite.methods.push_back(std::move(m));
+    }
+  } else {
+    suite.methods.push_back({"full", "full", "", {}});
+  }
+  suite.terms = doc.contains("terms") ? terms_at(doc["terms"], source, "terms")
+                                      : std::vector<std::string>{"all"};
+
+  if (doc.contains("flicker")) {
+    const json& f = doc["flicker"];
+    if (!f.is_object())
+      fail(source, "flicker", "an object {\"frames\", \"dt\", \"terms\"}", describe(f));
+    static constexpr std::string_view kFlickerKeys[] = {"frames", "dt", "terms"};
+    only_known(f, kFlickerKeys, source, "flicker.");
+    if (f.contains("frames"))
+      suite.flicker.frames = integer_at(f["frames"], source, "flicker.frames", 0, 100);
+    if (f.contains("dt"))
+      suite.flicker.dt = number_at(f["dt"], source, "flicker.dt", 0, 3600, "s", true);
+    if (f.contains("terms")) {
+      suite.flicker.terms = terms_at(f["terms"], source, "flicker.terms");
+    }
+  }
+  for (std::size_t i = 0; i < suite.flicker.terms.size(); ++i) {
+    const std::string& t = suite.flicker.terms[i];
+    if (std::find(suite.terms.begin(), suite.terms.end(), t) == suite.terms.end())
+      fail(source, "flicker.terms[" + std::to_string(i) + "]", "one of the suite's terms",
+           "\"" + t + "\"");
+  }
+
+  if (doc.contains("reference")) {
+    const json& r = doc["reference"];
+    if (!r.is_object())
+      fail(source, "reference",
+           "an object {\"pixel_samples\", \"sun_normal_samples\", \"check_convergence\"}",
+           describe(r));
+    static constexpr std::string_view kReferenceKeys[] = {"pixel_samples", "sun_normal_samples",
+                                                          "check_convergence"};
+    only_known(r, kReferenceKeys, source, "reference.");
+    if (r.contains("pixel_samples"))
+      suite.reference.pixel_samples =
+          integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1, 4096);
+    if (r.contains("sun_normal_samples"))
+      suite.reference.sun_normal_samples =
+          integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 4096);
+    if (r.contains("check_convergence"))
+      suite.reference.check_convergence =
+          bool_at(r["check_convergence"], source, "reference.check_convergence");
+  }
+
+  if (doc.contains("horizon")) {
+    const json& h = doc["horizon"];
+    if (!h.is_object())
+      fail(source, "horizon", "an object {\"depth_deg\", \"bin_deg\"}", describe(h));
+    static constexpr std::string_view kHorizonKeys[] = {"depth_deg", "bin_deg"};
+    only_known(h, kHorizonKeys, source, "horizon.");
+    // 90 degrees below the horizon is straight down at most.
+    if (h.contains("depth_deg"))
+      suite.horizon.depth_deg =
+          number_at(h["depth_deg"], source, "horizon.depth_deg", 0, 90, "degrees", true);
+    if (h.contains("bin_deg"))
+      suite.horizon.bin_deg =
+          number_at(h["bin_deg"], source, "horizon.bin_deg", 0, suite.horizon.depth_deg,
+                    "degrees; at most depth_deg", true);
+  }
+
+  // Cases.
+  if (!doc.contains("cases")) fail(source, "cases", "an array of cases", "none");
+  const json& cases = doc["cases"];
+  if (!cases.is_array() || cases.empty())
+    fail(source, "cases", "a non-empty array of cases", describe(cases));
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const std::string at = "cases[" + std::to_string(i) + "]";
+    const json& c = cases[i];
+    if (!c.is_object()) fail(source, at, "an object {\"name\": ..., \"set\": {...}}", describe(c));
+    static constexpr std::string_view kCaseKeys[] = {"name",   "description", "set",
+                                                     "expect", "error",       "methods"};
+    only_known(c, kCaseKeys, source, at + ".");
+    SuiteCase sc;
+    if (!c.contains("name")) fail(source, at + ".name", "a name of a-z, 0-9 and _", "none");
+    sc.name = name_at(c["name"], source, at + ".name");
+    for (const SuiteCase& earlier : suite.cases)
+      if (earlier.name == sc.name)
+        fail(source, at + ".name", "a name not used before in cases",
+             "\"" + sc.name + "\" a second time");
+    if (c.contains("description"))
+      sc.description = string_at(c["description"], source, at + ".description");
+    if (c.contains("expect")) {
+      const json& e = c["expect"];
+      if (!e.is_number_integer() || (e.get<long long>() != 0 && e.get<long long>() != 2))
+        fail(source, at + ".expect", "0 or 2", describe(e));
+      sc.expected_exit = e.get<int>();
+    }
+    if (c.contains("error")) {
+      if (sc.expected_exit != 2)
+        fail(source, at + ".error", "no error with expect 0 (an error only with \"expect\": 2)",
+             describe(c["error"]));
+      sc.expected_error = string_at(c["error"], source, at + ".error");
+      if (sc.expected_error.empty())
+        fail(source, at + ".error", "a non-empty part of the error message", "\"\"");
+    } else if (sc.expected_exit == 2) {
+      fail(source, at + ".error", "a part of the error message the case must give (expect 2)",
+           "none");
+    }
+    if (!c.contains("set"))
+      fail(source, at + ".set", "an object of scene keys ({} for none)", "none");
+    sc.set = overrides_at(c["set"], source, at + ".set", sc.expected_exit == 0);
+    if (c.contains("methods")) {
+      const json& ms = c["methods"];
+      if (!ms.is_array() || ms.empty())
+        fail(source, at + ".methods", "a non-empty array of the suite's method names",
+             describe(ms));
+      for (const SuiteMethod& m : suite.methods) {  // the suite's order
+        if (std::find(ms.begin(), ms.end(), json(m.name)) != ms.end()) sc.methods.push_back(m.name);
+      }
+      for (std::size_t k = 0; k < ms.size(); ++k) {
+        const std::string mat = at + ".methods[" + std::to_string(k) + "]";
+        if (!ms[k].is_string() || !suite.find_method(ms[k].get<std::string>()))
+          fail(source, mat, "the name of one of the suite's methods", describe(ms[k]));
+        if (std::count(ms.begin(), ms.end(), ms[k]) > 1)
+          fail(source, mat, "each method once", describe(ms[k]) + " a second time");
+      }
+    } else {
+      for (const SuiteMethod& m : suite.methods) sc.methods.push_back(m.name);
+    }
+    // A case expected to render: its scene, and its scene with each method's set, must build.
+    if (sc.expected_exit == 0) {
+      std::vector<std::string> assignments = base_assignments;
+      for (const SceneOverride& o : sc.set) assignments.push_back(o.assignment());
+      build_or_fail(scene_text, suite.scene_file, assignments, source, at + ".set");
+      for (const std::string& name : sc.methods) {
+        const SuiteMethod& m = *suite.find_method(name);
+        if (m.set.empty()) continue;
+        std::vector<std::string> with_method = assignments;
+        for (const SceneOverride& o : m.set) with_method.push_back(o.assignment());
+        const std::size_t index = static_cast<std::size_t>(&m - suite.methods.data());
+        build_or_fail(scene_text, suite.scene_file, with_method, source,
+                      "methods[" + std::to_string(index) + "].set (with " + at + ")");
+      }
+    }
+    suite.cases.push_back(std::move(sc));
+  }
+  return suite;
+}
+
+Suite load_suite_file(const std::string& path) {
+  const std::string text = read_text_file(path, "suite file", "", "");
+  return load_suite_text(text, path, std::filesystem::path(path).parent_path().string());
+}
+
+Suite default_suite() { return load_suite_text(default_suite_json(), "default suite"); }
+
+std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c,
+                                          const SuiteMethod* method) {
+  std::vector<std::string> out;
+  for (const SceneOverride& o : suite.base) out.push_back(o.assignment());
+  for (const SceneOverride& o : c.set) out.push_back(o.assignment());
+  if (method)
+    for (const SceneOverride& o : method->set) out.push_back(o.assignment());
+  return out;
+}
+
+SceneBuilder case_scene_builder(const Suite& suite, const SuiteCase& c, const SuiteMethod* method) {
+  SceneBuilder builder;
+  if (!suite.scene_file.empty()) builder.load_file(suite.scene_file);
+  for (const std::string& a : case_assignments(suite, c, method)) builder.set(a);
+  return builder;
+}
+
+Scene case_scene(const Suite& suite, const SuiteCase& c, const SuiteMethod* method) {
+  return case_scene_builder(suite, c, method).build();
+}
+
+}  // namespace thalassa::validation
