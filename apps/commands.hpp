@@ -54,6 +54,12 @@ struct FlyArgs {
   bool float_exr = false;
 };
 
+struct ValidateArgs {
+  std::string suite;    // empty: the default suite (data/suites/validation.json)
+  std::string dir;      // the report's folder
+  std::string backend;  // empty: the default headless backend
+};
+
 struct InfoArgs {
   std::string backend;
 };
@@ -62,10 +68,12 @@ void add_render_command(CLI::App& app, RenderArgs& args);
 void add_sky_command(CLI::App& app, SkyArgs& args);
 void add_fly_command(CLI::App& app, FlyArgs& args);
 void add_info_command(CLI::App& app, InfoArgs& args);
+void add_validate_command(CLI::App& app, ValidateArgs& args);
 int run_render(const RenderArgs& args);
 int run_sky(const SkyArgs& args);
 int run_fly(const FlyArgs& args);
 int run_info(const InfoArgs& args);
+int run_validate(const ValidateArgs& args);
 
 // Prints "thalassa: <message>" on stderr.
 void print_error(const std::string& message);

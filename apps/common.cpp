@@ -6,6 +6,7 @@
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 #include "commands.hpp"
 
@@ -132,6 +133,28 @@ Metadata render_metadata(const Scene& scene, const std::string& merged_json,
     passes += (passes.empty() ? "" : " ") + name + "=" + format_number(ms);
   metadata.emplace_back("thalassa:passes_ms", passes);
   return metadata;
+}
+
+std::string parse_terms(const std::string& text, LightTerms& terms) {
+  terms = {false, false, false, false};
+  std::stringstream list(text);
+  int count = 0;
+  for (std::string item; std::getline(list, item, ',');) {
+    if (item == "sun")
+      terms.sun = true;
+    else if (item == "sky")
+      terms.sky = true;
+    else if (item == "sea")
+      terms.sea = true;
+    else if (item == "air")
+      terms.air = true;
+    else
+      return "--terms " + text +
+             ": expected a comma-separated subset of sun, sky, sea, air, got \"" + item + "\"";
+    ++count;
+  }
+  if (count == 0) return "--terms: expected at least one of sun, sky, sea, air";
+  return "";
 }
 
 }  // namespace thalassa::cli

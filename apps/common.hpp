@@ -57,6 +57,9 @@ class PendingOutputs {
   std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
 };
 
+// "sun,sky,sea,air" (any non-empty subset, any order) -> the terms; an error message otherwise.
+std::string parse_terms(const std::string& text, LightTerms& terms);
+
 // A number as the metadata print it: %.9g.
 std::string format_number(double value);
 

@@ -8,29 +8,6 @@
 namespace thalassa::cli {
 namespace {
 
-// "sun,sky,sea,air" (any non-empty subset, any order) -> the terms; an error message otherwise.
-std::string parse_terms(const std::string& text, LightTerms& terms) {
-  terms = {false, false, false, false};
-  std::stringstream list(text);
-  int count = 0;
-  for (std::string item; std::getline(list, item, ',');) {
-    if (item == "sun")
-      terms.sun = true;
-    else if (item == "sky")
-      terms.sky = true;
-    else if (item == "sea")
-      terms.sea = true;
-    else if (item == "air")
-      terms.air = true;
-    else
-      return "--terms " + text +
-             ": expected a comma-separated subset of sun, sky, sea, air, got \"" + item + "\"";
-    ++count;
-  }
-  if (count == 0) return "--terms: expected at least one of sun, sky, sea, air";
-  return "";
-}
-
 std::string stats_json(const RenderStats& stats) {
   nlohmann::ordered_json json;
   json["backend"] = stats.backend;

@@ -14,10 +14,12 @@ int main(int argc, char** argv) {
   RenderArgs render_args;
   SkyArgs sky_args;
   FlyArgs fly_args;
+  ValidateArgs validate_args;
   InfoArgs info_args;
   add_render_command(app, render_args);
   add_sky_command(app, sky_args);
   add_fly_command(app, fly_args);
+  add_validate_command(app, validate_args);
   add_info_command(app, info_args);
   try {
     app.parse(argc, argv);
@@ -31,6 +33,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("render")) return run_render(render_args);
     if (app.got_subcommand("sky")) return run_sky(sky_args);
     if (app.got_subcommand("fly")) return run_fly(fly_args);
+    if (app.got_subcommand("validate")) return run_validate(validate_args);
     if (app.got_subcommand("info")) return run_info(info_args);
   } catch (const std::exception& error) {
     print_error(error.what());

@@ -262,6 +262,47 @@ TEST_F(Cli, InvalidOverridesAndOptionsExitWith2) {
   EXPECT_EQ(files(), std::vector<std::string>{});
 }
 
+// ---- thalassa validate ----
+
+// A small suite: two methods on one case that renders and one that must be refused. The report
+// holds every file docs/validation.md lists, and the reference's own metrics are exact.
+TEST_F(Cli, ValidateWritesTheReport) {
+  write("suite.json", R"({
+    "suite": "tiny",
+    "base": {"image.width": 24, "image.height": 16, "camera.height": 100, "camera.pitch": -20},
+    "methods": ["reference", "full"],
+    "terms": ["sun", "all"],
+    "flicker": {"frames": 2, "dt": 0.04, "terms": ["all"]},
+    "reference": {"pixel_samples": 4},
+    "cases": [
+      {"name": "near", "set": {"ocean.wind_speed": 8}},
+      {"name": "bad_lat", "set": {"camera.lat": 95}, "expect": 2, "error": "camera.lat"}
+    ]
+  })");
+  const Result r = run("validate suite.json -o report");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* file :
+       {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv",
+        "images/near_reference_sun.exr", "images/near_full_all.png", "plots/near_sun_rows.png",
+        "plots/near_error_time.png"})
+    EXPECT_TRUE(fs::is_regular_file(dir_ / "report" / file)) << file;
+  std::ifstream in(dir_ / "report" / "results.json");
+  const auto results = nlohmann::json::parse(in);
+  EXPECT_EQ(results["cases"].size(), 2u);
+  EXPECT_EQ(results["cases"][1]["exit_status"], 2);
+}
+
+TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
+  write("bad.json", R"({"suite": "bad", "cases": [{"name": "x", "set": {"camera.hieght": 4}}]})");
+  expect_invalid(run("validate bad.json -o out"), {"bad.json", "camera.hieght"});
+  // A case that expects to be refused but renders: the run ends with status 1.
+  write("wrong.json", R"({"suite": "wrong", "base": {"image.width": 16, "image.height": 8},
+    "cases": [{"name": "fine", "set": {"camera.lat": 45}, "expect": 2, "error": "lat"}]})");
+  const Result r = run("validate wrong.json -o out2");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("case fine"), std::string::npos) << r.err;
+}
+
 // ---- thalassa sky ----
 
 // The centre of texel (i, j) of an n x n sky map in u units (column 0 west, row 0 north).

@@ -201,9 +201,11 @@ std::string draw(const std::string& gnuplot, const fs::path& plots, const std::s
       std::to_string(options.plot_width) + "," + std::to_string(options.plot_height) +
       " noenhanced font ',10'\n" + "set output out\nset datafile missing 'NaN'\n";
   write_text_atomically((plots / (name + ".gp")).string(), header + script);
-  const std::string log = (plots / ("." + name + ".log")).string();
+  // Absolute: the child opens the log after it has changed into the folder.
+  const fs::path folder = fs::absolute(plots);
+  const std::string log = (folder / ("." + name + ".log")).string();
   const int status =
-      run_in(plots.string(), {gnuplot, "-e", "out='" + pending + "'", name + ".gp"}, log);
+      run_in(folder.string(), {gnuplot, "-e", "out='" + pending + "'", name + ".gp"}, log);
   std::string output;
   {
     std::ifstream in(log);

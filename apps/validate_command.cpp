@@ -1,0 +1,272 @@
+// thalassa validate [SUITE.json] -o DIR (issue 6, point 4): renders each case of a suite with
+// each of its methods and light terms, measures them against the case's reference
+// (validation/metrics.hpp) and writes the report (validation/report.hpp). Cases that expect
+// exit status 2 are checked to be refused with their message; the others to render finite
+// images. The command's own exit status: 0 when every case ended as it expected, 1 otherwise
+// (or at run time), 2 for a bad suite or bad options.
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "progress.hpp"
+#include "thalassa/thalassa.hpp"
+
+namespace thalassa::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using validation::CaseResult;
+using validation::MethodResult;
+using validation::Suite;
+using validation::SuiteCase;
+using validation::SuiteMethod;
+using validation::TermResult;
+
+bool all_finite(const Image& image) {
+  for (float v : image.rgba)
+    if (!std::isfinite(v)) return false;
+  return true;
+}
+
+// The renders of one case: (method name, term) -> images over the flicker frames (frame 0
+// first) and the frame time of frame 0.
+struct Rendered {
+  std::vector<Image> frames;
+  RenderStats stats;
+};
+
+class CaseRunner {
+ public:
+  CaseRunner(const Suite& suite, GlContext& context, const std::string& dir, ProgressBar& bar)
+      : suite_(suite), context_(context), dir_(dir), bar_(bar) {}
+
+  CaseResult run(const SuiteCase& c) {
+    CaseResult result;
+    result.name = c.name;
+    result.description = c.description;
+    result.set = c.set;
+    result.expected_exit = c.expected_exit;
+    result.expected_error = c.expected_error;
+    Scene scene;
+    try {
+      scene = validation::case_scene(suite_, c);
+      check_drawable(scene, "case " + c.name);
+    } catch (const SceneError& error) {
+      result.exit_status = kExitInvalidInput;
+      result.message = error.what();
+      bar_.skipped(c.name, "refused: " + result.message);
+      return result;
+    }
+    result.camera_height = scene.camera.height;
+    try {
+      render_case(c, scene, result);
+    } catch (const SceneError& error) {
+      result.exit_status = kExitInvalidInput;
+      result.message = error.what();
+    } catch (const std::exception& error) {
+      result.exit_status = kExitRuntimeFailure;
+      result.message = error.what();
+    }
+    return result;
+  }
+
+ private:
+  void render_case(const SuiteCase& c, const Scene& base_scene, CaseResult& result) {
+    const validation::ViewGeometry view(base_scene);
+    const SuiteMethod* reference = suite_.reference_method();
+    // The reference first: every other method is measured against its images.
+    std::map<std::string, Rendered> reference_images;
+    std::vector<const SuiteMethod*> order;
+    if (reference &&
+        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end())
+      order.push_back(reference);
+    for (const std::string& name : c.methods)
+      if (!reference || name != reference->name) order.push_back(suite_.find_method(name));
+    for (const SuiteMethod* method : order) {
+      const Scene scene = validation::case_scene(suite_, c, method);
+      MethodResult m;
+      m.name = method->name;
+      m.method = method->method;
+      m.plain = method->plain();
+      for (const std::string& term : suite_.terms) {
+        const Rendered rendered = render_term(c, *method, scene, term);
+        if (!std::all_of(rendered.frames.begin(), rendered.frames.end(), all_finite)) {
+          result.exit_status = kExitRuntimeFailure;
+          result.message = method->name + ", " + term + ": a pixel is not finite";
+        }
+        TermResult t;
+        t.term = term;
+        t.frame_ms = rendered.stats.frame_ms;
+        const std::string stem = "images/" + c.name + "_" + method->name + "_" + term;
+        t.exr = stem + ".exr";
+        t.png = stem + ".png";
+        write_exr((fs::path(dir_) / t.exr).string(), rendered.frames.front(), ExrPixelType::Float,
+                  {{"thalassa:case", c.name},
+                   {"thalassa:method", method->method},
+                   {"thalassa:terms", validation::terms_option(term)}});
+        write_png((fs::path(dir_) / t.png).string(), rendered.frames.front(),
+                  scene.image.exposure);
+        if (method == reference) {
+          reference_images[term] = rendered;
+          if (suite_.reference.check_convergence)
+            m.convergence.emplace_back(term, rendered.stats.sample_row_change);
+        }
+        const auto ref = reference_images.find(term);
+        if (ref != reference_images.end()) {
+          t.metrics = validation::compare_images(rendered.frames.front(), ref->second.frames.front(),
+                                                 view, suite_.horizon);
+          if (rendered.frames.size() >= 2) {
+            t.flicker = validation::flicker(rendered.frames, view.sea_mask());
+            if (ref->second.frames.size() == rendered.frames.size())
+              t.temporal_error = validation::temporal_error(rendered.frames, ref->second.frames,
+                                                            view.sea_mask());
+          }
+        }
+        m.terms.push_back(std::move(t));
+      }
+      result.methods.push_back(std::move(m));
+    }
+  }
+
+  // One method and term on the case: frame 0 at the scene's time, then the flicker frames.
+  Rendered render_term(const SuiteCase& c, const SuiteMethod& method, const Scene& scene,
+                       const std::string& term) {
+    RendererOptions options;
+    options.method = *ocean::parse_method(method.method);
+    options.reference.max_samples = suite_.reference.pixel_samples;
+    options.reference.min_samples = std::min(options.reference.min_samples,
+                                             suite_.reference.pixel_samples);
+    const std::string problem = parse_terms(validation::terms_option(term), options.terms);
+    if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
+    const bool over_time =
+        suite_.flicker.frames >= 2 && std::find(suite_.flicker.terms.begin(),
+                                                suite_.flicker.terms.end(),
+                                                term) != suite_.flicker.terms.end();
+    const int frames = over_time ? suite_.flicker.frames : 1;
+    Rendered rendered;
+    for (int k = 0; k < frames; ++k) {
+      const auto start = std::chrono::steady_clock::now();
+      Scene s = scene;
+      s.time += k * suite_.flicker.dt;
+      Renderer renderer(context_, s, options);
+      renderer.render();
+      rendered.frames.push_back(renderer.image());
+      if (k == 0) rendered.stats = renderer.stats();
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      char detail[160];
+      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples)",
+                    method.name.c_str(), term.c_str(), k, renderer.stats().frame_ms,
+                    renderer.stats().samples);
+      bar_.done(c.name, detail, seconds);
+    }
+    return rendered;
+  }
+
+  const Suite& suite_;
+  GlContext& context_;
+  std::string dir_;
+  ProgressBar& bar_;
+};
+
+// The renders a suite asks for, for the progress bar: per case expected to render, per method,
+// per term, one frame or the flicker frames.
+int render_count(const Suite& suite) {
+  int count = 0;
+  for (const SuiteCase& c : suite.cases) {
+    if (c.expected_exit != 0) {
+      ++count;  // its refusal is a (skipped) step
+      continue;
+    }
+    for (std::size_t m = 0; m < c.methods.size(); ++m)
+      for (const std::string& term : suite.terms) {
+        const bool over_time = suite.flicker.frames >= 2 &&
+                               std::find(suite.flicker.terms.begin(), suite.flicker.terms.end(),
+                                         term) != suite.flicker.terms.end();
+        count += over_time ? suite.flicker.frames : 1;
+      }
+  }
+  return count;
+}
+
+}  // namespace
+
+void add_validate_command(CLI::App& app, ValidateArgs& args) {
+  CLI::App* validate = app.add_subcommand(
+      "validate",
+      "Render a suite of cases with each shading method against the reference and write the "
+      "validation report (the default suite in data/suites/validation.json if none is given)");
+  validate->add_option("suite", args.suite, "Suite file (JSON, see docs/validation.md)");
+  validate->add_option("-o,--output", args.dir, "Folder of the report")->required();
+  validate->add_option("--backend", args.backend, "egl or osmesa (default: egl, else osmesa)")
+      ->check(CLI::IsMember({"egl", "osmesa"}));
+}
+
+int run_validate(const ValidateArgs& args) {
+  // 1. The suite, the output folder and gnuplot, before any render.
+  Suite suite;
+  try {
+    suite = args.suite.empty() ? validation::default_suite()
+                               : validation::load_suite_file(args.suite);
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+  std::error_code error;
+  if (fs::exists(args.dir, error) && !fs::is_directory(args.dir, error)) {
+    print_error("-o " + args.dir + ": expected a folder, got a file");
+    return kExitInvalidInput;
+  }
+  try {
+    validation::find_gnuplot();
+  } catch (const validation::ReportError& e) {
+    print_error(e.what());
+    return kExitRuntimeFailure;
+  }
+  fs::create_directories(fs::path(args.dir) / "images", error);
+  if (error) {
+    print_error("-o " + args.dir + ": cannot create the folder (" + error.message() + ")");
+    return kExitInvalidInput;
+  }
+
+  // 2. Every case.
+  std::unique_ptr<GlContext> context = open_context(args.backend);
+  validation::Report report;
+  report.suite = suite.name;
+  report.description = suite.description;
+  report.source = suite.source;
+  report.backend = std::string(backend_name(context->backend()));
+  report.renderer = query_gl_info().renderer;
+  report.version = THALASSA_VERSION_STRING;
+  report.horizon = suite.horizon;
+  ProgressBar bar(render_count(suite), "renders");
+  CaseRunner runner(suite, *context, args.dir, bar);
+  int failed = 0;
+  for (const SuiteCase& c : suite.cases) {
+    report.cases.push_back(runner.run(c));
+    if (!report.cases.back().passed()) {
+      ++failed;
+      print_error("case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
+                  ", got " + std::to_string(report.cases.back().exit_status) +
+                  (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message +
+                                                                  ")"));
+    }
+  }
+  bar.finish();
+
+  // 3. The report.
+  try {
+    validation::write_report(report, args.dir);
+  } catch (const validation::ReportError& e) {
+    print_error(e.what());
+    return kExitRuntimeFailure;
+  }
+  std::fprintf(stderr, "thalassa: %zu cases, %d not as expected; report in %s/index.html\n",
+               suite.cases.size(), failed, args.dir.c_str());
+  return failed == 0 ? kExitOk : kExitRuntimeFailure;
+}
+
+}  // namespace thalassa::cli
