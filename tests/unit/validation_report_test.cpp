@@ -216,6 +216,19 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   EXPECT_EQ(error_dat.find("\nreference "), std::string::npos);
 }
 
+// A suite without a reference (the stress suite) measures nothing: the report has its tables
+// and images, and no plot (gnuplot refuses to plot no data; it must not be asked to).
+TEST_F(ValidationReport, WithoutAReferenceThereIsNothingToPlot) {
+  Report report = synthetic_report();
+  for (CaseResult& c : report.cases)
+    for (MethodResult& m : c.methods)
+      for (TermResult& t : m.terms) t.metrics = TermMetrics{};
+  const std::vector<std::string> written = write_report(report, dir_.string());
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "index.html"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "metrics.csv"));
+  for (const std::string& rel : written) EXPECT_EQ(rel.rfind("plots/", 0), std::string::npos) << rel;
+}
+
 TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   const Report report = synthetic_report();
   write_report(report, dir_.string());

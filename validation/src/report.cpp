@@ -227,6 +227,9 @@ std::string draw(const std::string& gnuplot, const fs::path& plots, const std::s
   return png;
 }
 
+// Whether the term was measured against a reference (compare_images ran on it).
+bool measured(const TermResult& t) { return !t.metrics.row_totals.empty(); }
+
 // Fig. 10's right column: each plain method's row totals (luminance over the sea) and their
 // ratio to the reference's, row 0 at the top of the image.
 std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
@@ -234,8 +237,8 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   std::vector<std::pair<std::string, const TermResult*>> curves;
   for (const MethodResult& m : c.methods)
     if (m.plain)
-      if (const TermResult* t = term_of(m, term)) curves.push_back({m.name, t});
-  if (curves.empty()) return "";
+      if (const TermResult* t = term_of(m, term); t && measured(*t)) curves.push_back({m.name, t});
+  if (curves.empty()) return "";  // no reference in the suite: nothing was measured
   std::size_t rows = 0;
   for (const auto& [name, t] : curves) rows = std::max(rows, t->metrics.row_totals.size());
   std::string data = "# row";
@@ -278,6 +281,10 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
                             const ReportOptions& options) {
   const std::vector<std::string> terms = case_terms(c);
   if (terms.empty()) return "";
+  bool any = false;  // a suite without a reference measures nothing to plot
+  for (const MethodResult& m : c.methods)
+    for (const TermResult& t : m.terms) any = any || (measured(t) && !(m.method == "reference"));
+  if (!any) return "";
   std::string data = "# method";
   for (const std::string& t : terms) data += " frame_ms_" + t + " relative_l1_" + t;
   data += "\n";
