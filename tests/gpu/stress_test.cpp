@@ -1,9 +1,10 @@
-// The stress suite of issue 7, point 1 (data/suites/stress.json, docs/suites.md), rendered
-// in-process through the library: every case that expects exit status 0 renders, and every pixel
-// of its EXR, written as the command line writes it (scene.image.exr_type, half by default) and
-// read back, is finite. (The cases that expect 2 are checked without GL in
-// tests/unit/suite_test.cpp.) The cases are split into a few shards, one gtest (hence one ctest
-// entry) each, so that ctest -j runs them in parallel.
+// The stress suite of issue 7, point 1 (data/suites/stress.json; the suite format and its loader,
+// thalassa::validation::load_suite_file, are in docs/validation.md), rendered in-process through
+// the library: every case that expects exit status 0 renders, and every pixel of its EXR, written
+// as the command line writes it (scene.image.exr_type, half by default) and read back, is finite.
+// (The cases that expect 2 are checked, with their error messages, without GL in
+// tests/unit/stress_suite_test.cpp.) The cases are split into a few shards, one gtest (hence one
+// ctest entry) each, so that ctest -j runs them in parallel.
 //
 // A case larger than kCiPixelBudget (image_4096x4096: a frame of that size takes tens of seconds
 // on llvmpipe, docs/numerics.md) is rendered in CI as two surrogates that hold exactly its own
@@ -20,6 +21,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,12 +39,12 @@ constexpr int kStripPixels = 16;
 constexpr double kDegree = M_PI / 180.0;
 
 // The suite, loaded once; empty when it cannot be loaded (StressSuite.Loads then fails).
-const Suite& stress_suite() {
-  static const Suite suite = [] {
+const validation::Suite& stress_suite() {
+  static const validation::Suite suite = [] {
     try {
-      return load_suite_file(kSuitePath);
-    } catch (const SuiteError&) {
-      return Suite{};
+      return validation::load_suite_file(kSuitePath);
+    } catch (const validation::SuiteError&) {
+      return validation::Suite{};
     }
   }();
   return suite;
@@ -50,7 +52,7 @@ const Suite& stress_suite() {
 
 std::vector<std::string> rendered_case_names() {
   std::vector<std::string> names;
-  for (const SuiteCase& c : stress_suite().cases)
+  for (const validation::SuiteCase& c : stress_suite().cases)
     if (c.expected_exit == 0) names.push_back(c.name);
   return names;
 }
@@ -72,14 +74,24 @@ Scene central_strip(const Scene& scene, bool rows, int strip) {
 }
 
 TEST(StressSuite, Loads) {
-  EXPECT_NO_THROW(load_suite_file(kSuitePath));
+  EXPECT_NO_THROW(validation::load_suite_file(kSuitePath));
   EXPECT_GT(rendered_case_names().size(), 20u);
+  // Each case is rendered once, plainly, with the full hierarchy (no `methods` in the file).
+  ASSERT_EQ(stress_suite().methods.size(), 1u);
+  EXPECT_EQ(stress_suite().methods[0].method, "full");
+  EXPECT_TRUE(stress_suite().methods[0].plain());
 }
 
-// Renders one case of the suite and checks its EXR.
-void check_case(GlContext& context, const SuiteCase& c) {
-  SCOPED_TRACE(c.name);
-  const Scene scene = build_suite_case_scene(stress_suite(), c);
+// Renders one case of the suite with `method` (its scene and shading method, as `thalassa
+// validate` renders it) and checks its EXR.
+void check_case(GlContext& context, const validation::SuiteCase& c,
+                const validation::SuiteMethod& method) {
+  SCOPED_TRACE(c.name + " (" + method.name + ")");
+  const Scene scene = validation::case_scene(stress_suite(), c, &method);
+  RendererOptions options;
+  const std::optional<ocean::OceanMethod> shading = ocean::parse_method(method.method);
+  ASSERT_TRUE(shading.has_value()) << method.method;
+  options.method = *shading;
   std::vector<Scene> renders;
   const char* full = std::getenv("THALASSA_STRESS_FULL");
   const bool whole = full != nullptr && std::string(full) == "1";
@@ -89,7 +101,7 @@ void check_case(GlContext& context, const SuiteCase& c) {
     renders = {scene};
   }
   for (const Scene& s : renders) {
-    Renderer renderer(context, s);
+    Renderer renderer(context, s, options);
     const RenderStats stats = renderer.stats();
     const std::string path = test::output_dir() + "/stress_" + c.name + ".exr";
     write_exr(path, renderer.image(), s.image.exr_type);
@@ -133,8 +145,12 @@ TEST_P(Stress, RendersFiniteImages) {
   ASSERT_FALSE(names.empty());
   for (std::size_t i = GetParam(); i < names.size(); i += kShards) {
     if (only != nullptr && names[i] != only) continue;
-    for (const SuiteCase& c : stress_suite().cases)
-      if (c.name == names[i]) check_case(*context, c);
+    for (const validation::SuiteCase& c : stress_suite().cases) {
+      if (c.name != names[i]) continue;
+      ASSERT_FALSE(c.methods.empty()) << c.name;
+      for (const std::string& m : c.methods)
+        check_case(*context, c, *stress_suite().find_method(m));
+    }
   }
 }
 

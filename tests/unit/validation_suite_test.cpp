@@ -1,12 +1,15 @@
 // Suite files (validation/include/thalassa/validation/suite.hpp, docs/validation.md): the default
-// suite loads and is data/suites/validation.json; stress-style cases fit the same format; bad
-// suites are refused with one line naming the file, the key path, what was expected and got.
+// suite loads and is data/suites/validation.json; stress-style cases fit the same format;
+// overrides keep their order and a case's win over the base's; case_scene_error gives a refused
+// case's message; bad suites are refused with one line naming the file, the key path, what was
+// expected and got. (The stress suite itself: tests/unit/stress_suite_test.cpp.)
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -114,6 +117,77 @@ TEST(ValidationSuite, StressCasesWithAnExpectedExitStatusFit) {
   EXPECT_THROW(case_scene(s, s.cases[2]), SceneError);
 }
 
+// Overrides keep the file's order and their values' JSON text (as --set reads them), a case's
+// key wins over the base's, and each value reaches the scene.
+TEST(ValidationSuite, OverridesKeepFileOrderAndACaseWinsOverTheBase) {
+  const Suite s = load_suite_text(R"({
+    "suite": "small", "description": "two cases",
+    "base": {"image.width": 32, "image.height": 16, "camera.pitch": -5},
+    "cases": [
+      {"name": "high", "description": "why",
+       "set": {"camera.height": 20000, "ocean.spectrum": "omega-2", "camera.pitch": 90}},
+      {"name": "level", "set": {}}
+    ]})",
+                                  "small.json");
+  EXPECT_EQ(s.name, "small");
+  EXPECT_EQ(s.description, "two cases");
+  EXPECT_EQ(s.source, "small.json");
+  ASSERT_EQ(s.cases.size(), 2u);
+  const SuiteCase& high = s.cases[0];
+  EXPECT_EQ(high.description, "why");
+  EXPECT_EQ(high.expected_exit, 0);
+  EXPECT_EQ(high.expected_error, "");
+  ASSERT_EQ(high.set.size(), 3u);
+  EXPECT_EQ(high.set[0].key, "camera.height");
+  EXPECT_EQ(high.set[0].value_json, "20000");
+  EXPECT_EQ(high.set[1].key, "ocean.spectrum");
+  EXPECT_EQ(high.set[1].value_json, "\"omega-2\"");
+  EXPECT_EQ(high.set[1].assignment(), "ocean.spectrum=\"omega-2\"");
+  EXPECT_EQ(case_assignments(s, high),
+            (std::vector<std::string>{"image.width=32", "image.height=16", "camera.pitch=-5",
+                                      "camera.height=20000", "ocean.spectrum=\"omega-2\"",
+                                      "camera.pitch=90"}));
+  const Scene scene = case_scene(s, high);
+  EXPECT_EQ(scene.image.width, 32);
+  EXPECT_EQ(scene.image.height, 16);
+  EXPECT_EQ(scene.camera.height, 20000.0);
+  EXPECT_EQ(scene.ocean.spectrum, WaveSpectrum::OmegaMinus2);
+  EXPECT_EQ(scene.camera.pitch, 90.0);                      // the case's, over the base's
+  EXPECT_EQ(case_scene(s, s.cases[1]).camera.pitch, -5.0);  // the base's
+}
+
+// case_scene_error: the message a case expecting exit status 2 is refused with, the same line
+// case_scene throws; none for a scene that builds (alone or with a method's set).
+TEST(ValidationSuite, CaseSceneErrorIsTheMessageOfTheRefusedScene) {
+  const Suite s = load_suite_text(R"({"suite": "s",
+    "methods": ["full", {"name": "coarse", "method": "full", "set": {"ocean.grid_cell": 16}}],
+    "cases": [
+      {"name": "fine", "set": {"camera.lat": 90}},
+      {"name": "bad_lat", "set": {"camera.lat": 91}, "expect": 2, "error": "camera.lat"},
+      {"name": "lambdas", "set": {"ocean.lambda_min": 10, "ocean.lambda_max": 5}, "expect": 2,
+       "error": "ocean.lambda_min"}
+    ]})",
+                                  "s.json");
+  EXPECT_FALSE(case_scene_error(s, s.cases[0]).has_value());
+  EXPECT_FALSE(case_scene_error(s, s.cases[0], s.find_method("coarse")).has_value());
+  for (const SuiteCase& c : {s.cases[1], s.cases[2]}) {
+    SCOPED_TRACE(c.name);
+    const std::optional<std::string> error = case_scene_error(s, c);
+    ASSERT_TRUE(error.has_value());
+    EXPECT_NE(error->find(c.expected_error), std::string::npos) << *error;
+    EXPECT_EQ(error->find('\n'), std::string::npos) << *error;
+    try {
+      case_scene(s, c);
+      ADD_FAILURE() << "case_scene built it";
+    } catch (const SceneError& e) {
+      EXPECT_EQ(*error, e.what());
+    }
+    EXPECT_EQ(case_scene_error(s, c, s.find_method("coarse")), error);
+  }
+  EXPECT_EQ(case_scene_error(s, s.cases[1]).value_or(""),
+            "--set: camera.lat: expected a number in [-90, 90] (degrees), got 91");
+}
+
 TEST(ValidationSuite, AMethodsSetAppliesToThatMethodOnlyAndWinsOverTheCase) {
   const Suite s = load_suite_text(R"({"suite": "v",
     "base": {"ocean.waves": 60, "ocean.grid_cell": 8},
@@ -186,6 +260,28 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: cases[0].set.ocean.spectrum: expected ..."},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": [1]}}]})",
        "t.json: cases[0].set.camera.pitch: expected a number, string or boolean, got an array"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": null}}]})",
+       "t.json: cases[0].set.camera.pitch: expected a number, string or boolean, got null"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera": {"height": 1}}}]})",
+       "t.json: cases[0].set.camera: expected a scene key (docs/scene.md), got an unknown key"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.hieght": 1}, "expect": 2, "error": "x"}]})",
+       "t.json: cases[0].set.camera.hieght: expected a scene key (docs/scene.md), got an unknown "
+       "key"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": [1]}]})",
+       "t.json: cases[0].set: expected an object of scene keys in the dotted --set form "
+       "({\"camera.height\": 10}), got an array"},
+      {R"({"suite": "s", "base": [], "cases": [)" + ok_case + "]}",
+       "t.json: base: expected an object of scene keys in the dotted --set form "
+       "({\"camera.height\": 10}), got an empty array"},
+      {R"({"suite": "s", "base": {"camera.hieght": 1}, "cases": [)" + ok_case + "]}",
+       "t.json: base.camera.hieght: expected a scene key (docs/scene.md), got an unknown key"},
+      {R"({"suite": "s", "cases": [1]})",
+       "t.json: cases[0]: expected an object {\"name\": ..., \"set\": {...}}, got 1"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "speed": 1}]})",
+       "t.json: cases[0].speed: expected a known key (name, description, set, expect, error, "
+       "methods; see docs/validation.md), got an unknown key"},
+      {R"({"suite": "s", "cases": [{"name": "A", "set": {}}]})",
+       "t.json: cases[0].name: expected a name of a-z, 0-9 and _, got \"A\""},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.lambda_min": 10, "ocean.lambda_max": 5}}]})",
        "t.json: cases[0].set: expected a valid scene, got --set: ocean.lambda_min..."},
       {R"({"suite": "s", "cases": [{"name": "a"}]})",
@@ -197,6 +293,10 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 2}]})",
        "t.json: cases[0].error: expected a part of the error message the case must give (expect "
        "2), got none"},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": "2", "error": "x"}]})",
+       "t.json: cases[0].expect: expected 0 or 2, got \"2\""},
+      {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "expect": 2, "error": ""}]})",
+       "t.json: cases[0].error: expected a non-empty part of the error message, got \"\""},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "error": "x"}]})",
        "t.json: cases[0].error: expected no error with expect 0 (an error only with \"expect\": "
        "2), got \"x\""},

@@ -476,4 +476,14 @@ Scene case_scene(const Suite& suite, const SuiteCase& c, const SuiteMethod* meth
   return case_scene_builder(suite, c, method).build();
 }
 
+std::optional<std::string> case_scene_error(const Suite& suite, const SuiteCase& c,
+                                            const SuiteMethod* method) {
+  try {
+    case_scene(suite, c, method);
+  } catch (const SceneError& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
 }  // namespace thalassa::validation

@@ -8,4 +8,3 @@
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/engine/image.hpp"
 #include "thalassa/engine/scene.hpp"
-#include "thalassa/engine/suite.hpp"

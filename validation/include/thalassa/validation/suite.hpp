@@ -128,5 +128,10 @@ std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c
 SceneBuilder case_scene_builder(const Suite& suite, const SuiteCase& c,
                                 const SuiteMethod* method = nullptr);
 Scene case_scene(const Suite& suite, const SuiteCase& c, const SuiteMethod* method = nullptr);
+// Why that scene is invalid input: the one-line message of the SceneError case_scene() throws
+// (the message a run of the case prints with exit status 2, which must contain a case's
+// expected_error); nullopt where the scene builds.
+std::optional<std::string> case_scene_error(const Suite& suite, const SuiteCase& c,
+                                            const SuiteMethod* method = nullptr);
 
 }  // namespace thalassa::validation
