@@ -300,7 +300,7 @@ TEST_F(AtmosphereNumerics, TransmittanceParameterisationAtTheHorizon) {
   Row uv{"GetTransmittanceTextureUvFromRMu, x_mu", "mu from mu_h to 1, h in [1 cm, 10 km]: texels",
          1e-12};
   Row inverse{"GetRMuFromTransmittanceTextureUv, mu",
-              "round trip of the previous row: |mu' - mu|, absolute", 2e-15};
+              "round trip of the previous row: absolute error of mu", 2e-15};
   uv.compared = inverse.compared = false;
   for (double h : Heights()) {
     const double r = kBottom + h;
