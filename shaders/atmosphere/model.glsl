@@ -31,8 +31,10 @@
 //
 // Numerics. Discriminants of ray-sphere intersections are written (R - r)(R + r) + r^2 mu^2
 // instead of r^2 (mu^2 - 1) + R^2: R - r is exact when r is near R (Sterbenz), so grazing rays
-// from a camera near the sea keep their precision in float. Every square root and acos takes a
-// clamped argument, so no input produces NaN.
+// from a camera near the sea keep their precision in float; the root that would cancel (the
+// ground's near one, the top's far one) is taken in the product-of-roots form (see
+// DistanceToTopAtmosphereBoundary; docs/numerics.md, section 6). Every square root and acos
+// takes a clamped argument, so no input produces NaN.
 
 #ifndef THALASSA_ATMOSPHERE_MODEL_GLSL
 #define THALASSA_ATMOSPHERE_MODEL_GLSL
