@@ -31,8 +31,10 @@
 //
 // Numerics. Discriminants of ray-sphere intersections are written (R - r)(R + r) + r^2 mu^2
 // instead of r^2 (mu^2 - 1) + R^2: R - r is exact when r is near R (Sterbenz), so grazing rays
-// from a camera near the sea keep their precision in float. Every square root and acos takes a
-// clamped argument, so no input produces NaN.
+// from a camera near the sea keep their precision in float; the root that would cancel (the
+// ground's near one, the top's far one) is taken in the product-of-roots form (see
+// DistanceToTopAtmosphereBoundary; docs/numerics.md, section 6). Every square root and acos
+// takes a clamped argument, so no input produces NaN.
 
 #ifndef THALASSA_ATMOSPHERE_MODEL_GLSL
 #define THALASSA_ATMOSPHERE_MODEL_GLSL
@@ -121,16 +123,37 @@ Number SphereDiscriminant(IN(Number) r, IN(Number) mu, IN(Number) radius) {
   return (radius - r) * (radius + r) + r * mu * r * mu;
 }
 
+// The two roots of |x + d v| = R, d^2 + 2 r mu d + r^2 - R^2 = 0, are -r mu -+ sqrt(disc); their
+// product is r^2 - R^2 (Vieta). Of the two, the one whose terms have opposite signs cancels: for
+// a camera h above the ground looking down, the near root -r mu - sqrt(disc) ~ h / |mu| is a
+// difference of two numbers of size r |mu|, which loses r mu^2 / h ulps (measured in double: 5e8
+// ulps at h = 1 cm, 2e5 at 30 m; docs/numerics.md, section 6); so is the top's root
+// -r mu + sqrt(disc) ~ (top - r) / mu for a camera just below the top looking up. Each such root
+// is computed instead as (r^2 - R^2) / (the other root), whose sum has terms of one sign (the
+// product-of-roots form, as ocean/sea_surface.hpp does for the sea), with r^2 - R^2 as
+// (r - R)(r + R), exact to one rounding.
+
 // Distance (m) from a point at radius r to the top boundary along a ray of cosine mu (r inside).
 Number DistanceToTopAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, IN(Number) r,
                                        IN(Number) mu) {
-  return ClampDistance(-r * mu + SafeSqrt(SphereDiscriminant(r, mu, atmosphere.top_radius)));
+  Number r_mu = r * mu;
+  Number root = SafeSqrt(SphereDiscriminant(r, mu, atmosphere.top_radius));
+  // mu > 0: the far root -r mu + root cancels; (top^2 - r^2) / (r mu + root) does not.
+  if (r_mu > 0.0) {
+    return ClampDistance((atmosphere.top_radius - r) * (atmosphere.top_radius + r) /
+                         (r_mu + root));
+  }
+  return ClampDistance(root - r_mu);
 }
 
-// Distance (m) to the ground along a ray that intersects it (see RayIntersectsGround).
+// Distance (m) to the ground along a ray that intersects it (see RayIntersectsGround): the near
+// root -r mu - sqrt(disc), as (r^2 - bottom^2) / (-r mu + sqrt(disc)), which does not cancel for
+// mu < 0. 0 where the far root is not positive (rays that go up or are horizontal).
 Number DistanceToBottomAtmosphereBoundary(IN(AtmosphereParameters) atmosphere, IN(Number) r,
                                           IN(Number) mu) {
-  return ClampDistance(-r * mu - SafeSqrt(SphereDiscriminant(r, mu, atmosphere.bottom_radius)));
+  Number far_root = SafeSqrt(SphereDiscriminant(r, mu, atmosphere.bottom_radius)) - r * mu;
+  if (far_root <= 0.0) return 0.0;
+  return ClampDistance((r - atmosphere.bottom_radius) * (r + atmosphere.bottom_radius) / far_root);
 }
 
 bool RayIntersectsGround(IN(AtmosphereParameters) atmosphere, IN(Number) r, IN(Number) mu) {
@@ -362,7 +385,7 @@ vec4 GetScatteringTextureUvwzFromRMuMuSNu(IN(AtmosphereParameters) atmosphere, I
   Number discriminant = SphereDiscriminant(r, mu, atmosphere.bottom_radius);
   Number u_mu;
   if (ray_r_mu_intersects_ground) {
-    Number d = -r_mu - SafeSqrt(discriminant);
+    Number d = DistanceToBottomAtmosphereBoundary(atmosphere, r, mu);  // no cancellation
     Number d_min = r - atmosphere.bottom_radius;
     Number d_max = rho;
     u_mu = 0.5 - 0.5 * GetTextureCoordFromUnitRange(

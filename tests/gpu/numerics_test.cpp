@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "model_reference.hpp"
 #include "ross_brdf_reference.hpp"
 #include "test_support.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
@@ -121,6 +122,7 @@ class Region {
         << row_.function << ", " << row_.region << " at " << row_.where;
     Table()[index_] = row_;
   }
+  double worst() const { return row_.worst; }
   void add(double error, const std::string& where) {
     ++row_.samples;
     EXPECT_TRUE(std::isfinite(error)) << row_.function << ", " << row_.region << " at " << where;
@@ -443,6 +445,100 @@ TEST_F(GpuNumericsTest, SkyMapCoordinatesNearTheNadir) {
     region.add(glm::length(glm::dvec2(gpu_x[i].z, gpu_x[i].w) - du_x) / glm::length(du_x), where);
     region.add(glm::length(glm::dvec2(gpu_y[i].x, gpu_y[i].y) - du_y) / glm::length(du_y), where);
   }
+}
+
+TEST_F(GpuNumericsTest, AtmosphereRaySphereDistances) {
+  // model.glsl's ray-sphere distances in float over the stiff regions of
+  // tests/unit/atmosphere_numerics_test.cpp: a camera h above the ground (h from 0.5 m, float's
+  // step at the Earth's radius, to 10 km) looking down and grazing the horizon from either side,
+  // h below the top looking up and along the top's tangent. Radii and (r, mu) are floats; the
+  // reference is the double model (exact to 8 eps (1 + kappa)) on the same floats. For the
+  // ground, errors are over 1 + kappa, kappa = (r mu)^2 / disc the condition number of the near
+  // root (1 for rays straight down, unbounded at the horizon); "previous" is the form
+  // -r mu +- sqrt(disc) in float (FUNCTION 10).
+  const double bottom = RoundToFloat(6371008.8), top = RoundToFloat(6371008.8 + 60000.0);
+  glsl::AtmosphereParameters atmosphere{};
+  atmosphere.bottom_radius = bottom;
+  atmosphere.top_radius = top;
+  std::vector<glm::vec4> inputs;
+  std::vector<int> region;  // 0: ground, steep; 1: ground, grazing; 2: top, up; 3: top, tangent;
+                            // 4: top, grazing the ground from above
+  const auto add = [&](double r, double mu, int which) {
+    inputs.emplace_back(float(r), float(mu), 0.0f, 0.0f);
+    region.push_back(which);
+  };
+  for (int k = -1; k <= 15; ++k) {
+    const double h = 0.5 * std::ldexp(1.0, k) / 2.0;  // 0.25 m (-> 0.5 m in float) .. 8.4 km
+    const double r_low = RoundToFloat(bottom + std::max(h, 0.5));
+    const double mu_h = -std::sqrt(1.0 - (bottom / r_low) * (bottom / r_low));
+    for (int i = 0; i <= 40; ++i) add(r_low, -1.0 + (1.0 + 1.1 * mu_h) * i / 40.0, 0);
+    for (int j = 2; j <= 7; ++j) {
+      add(r_low, mu_h * (1.0 + std::pow(10.0, -j)), 1);
+      add(r_low, mu_h * (1.0 - std::pow(10.0, -j)), 4);
+    }
+    const double r_high = RoundToFloat(top - std::max(h, 0.5));
+    for (int i = 0; i <= 36; ++i) add(r_high, std::pow(10.0, -3.0 + i / 12.0), 2);
+    for (int j = 1; j <= 8; ++j) {
+      add(r_high, std::pow(10.0, -j), 3);
+      add(r_high, -std::pow(10.0, -j), 3);
+    }
+  }
+  const auto uniforms = [&](GLuint program) {
+    glProgramUniform2f(program, glGetUniformLocation(program, "radii"), float(bottom), float(top));
+  };
+  const auto gpu = evaluate(9, inputs, uniforms);
+  const auto previous = evaluate(10, inputs, uniforms);
+  Region steep("DistanceToBottom, error / (1 + kappa)", "h in [0.5 m, 8 km], mu in [-1, 1.1 mu_h]",
+               1e-6);
+  Region steep_before("DistanceToBottom, previous form", "same (not asserted)",
+                      std::numeric_limits<double>::infinity());
+  Region grazing("DistanceToBottom, error / (1 + kappa)", "mu = mu_h (1 + 10^-k), k = 2..7", 1e-6);
+  Region up("DistanceToTop", "top - r in [0.5 m, 8 km], mu in [1e-3, 1]", 1e-6);
+  Region up_before("DistanceToTop, previous form", "same (not asserted)",
+                   std::numeric_limits<double>::infinity());
+  Region tangent("DistanceToTop", "top - r in [0.5 m, 8 km], mu = +-10^-k, k = 1..8", 1e-6);
+  Region above("DistanceToTop", "mu = mu_h (1 - 10^-k), k = 2..7, h in [0.5 m, 8 km]", 1e-6);
+  Region texels("transmittance u, texels", "mu from mu_h to 1 (the rows above)", 5e-4);
+  int classified = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const double r = inputs[i].x, mu = inputs[i].y;
+    const std::string where =
+        (region[i] == 2 || region[i] == 3 ? Format("top - r = %.4g m, ", top - r)
+                                          : Format("h = %.4g m, ", r - bottom)) +
+        Format("mu = %.4g", mu);
+    const double disc = glsl::SphereDiscriminant(r, mu, bottom);
+    const bool ground = mu < 0.0 && disc >= 0.0;
+    if (region[i] <= 1) {
+      if (!ground) continue;  // float's mu rounded across the horizon (k = 7)
+      const double kappa = r * mu * r * mu / disc;
+      const double expected = glsl::DistanceToBottomAtmosphereBoundary(atmosphere, r, mu);
+      (region[i] == 0 ? steep : grazing)
+          .add(Relative(gpu[i].y, expected, 0.0) / (1.0 + kappa), where);
+      if (region[i] == 0)
+        steep_before.add(Relative(previous[i].y, expected, 0.0) / (1.0 + kappa), where);
+    } else {
+      const double expected = glsl::DistanceToTopAtmosphereBoundary(atmosphere, r, mu);
+      (region[i] == 2   ? up
+       : region[i] == 3 ? tangent
+                        : above)
+          .add(Relative(gpu[i].x, expected, 0.0), where);
+      if (region[i] == 2) up_before.add(Relative(previous[i].x, expected, 0.0), where);
+      if (!ground) {
+        const double u = glsl::GetTransmittanceTextureUvFromRMu(atmosphere, r, mu).x;
+        texels.add(std::abs(gpu[i].z - u) * glsl::TRANSMITTANCE_TEXTURE_WIDTH, where);
+      }
+    }
+    // The ground test agrees with the double one except within float's rounding of the
+    // discriminant (6e-8 (r mu)^2, over its derivative 2 r^2 |mu|) of the horizon.
+    if (std::abs(disc) > 4.0 * 6e-8 * r * mu * r * mu) {
+      ++classified;
+      EXPECT_EQ(gpu[i].w == 1.0f, ground) << where;
+    }
+  }
+  EXPECT_GT(classified, 1000);
+  // The cancellation the rewrite removes: in float it reached errors of order 1.
+  EXPECT_GT(steep_before.worst(), 0.1);
+  EXPECT_GT(up_before.worst(), 1e-3);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "common/definitions.glsl"
 #include "ocean/ross_brdf.glsl"
 #include "ocean/trochoids.glsl"
+#include "atmosphere/model.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
 uniform vec3 light;           // unit, tangent frame (FUNCTION 4)
@@ -14,6 +15,7 @@ uniform vec3 frame_x;         // t_x, t_y, n: the tangent frame in the sky map's
 uniform vec3 frame_y;         // (FUNCTION 7 and 8)
 uniform vec3 frame_n;
 uniform vec3 dr;              // a direction derivative (FUNCTION 6)
+uniform vec2 radii;           // bottom and top radius of the atmosphere, m (FUNCTION 9, 10)
 layout(location = 0) out vec4 result;
 
 void main() {
@@ -53,6 +55,25 @@ void main() {
   result = vec4(u0.x, u0.y, du_x.x, du_x.y);
 #else
   result = vec4(du_y.x, du_y.y, 0.0, 0.0);
+#endif
+#elif FUNCTION == 9 || FUNCTION == 10
+  // The atmosphere's ray-sphere distances (m) from radius r = p.x (m) along cosine mu = p.y.
+  AtmosphereParameters atmosphere;
+  atmosphere.bottom_radius = radii.x;
+  atmosphere.top_radius = radii.y;
+  const float r = p.x;
+  const float mu = p.y;
+#if FUNCTION == 9
+  // model.glsl's: distance to the top, to the ground, the transmittance table's u, and whether
+  // the ray hits the ground (1 or 0).
+  result = vec4(DistanceToTopAtmosphereBoundary(atmosphere, r, mu),
+                DistanceToBottomAtmosphereBoundary(atmosphere, r, mu),
+                GetTransmittanceTextureUvFromRMu(atmosphere, r, mu).x,
+                RayIntersectsGround(atmosphere, r, mu) ? 1.0 : 0.0);
+#else
+  // The forms before the product-of-roots rewrite, for comparison: -r mu +- sqrt(disc).
+  result = vec4(max(-r * mu + SafeSqrt(SphereDiscriminant(r, mu, radii.y)), 0.0),
+                max(-r * mu - SafeSqrt(SphereDiscriminant(r, mu, radii.x)), 0.0), 0.0, 0.0);
 #endif
 #endif
 }
