@@ -85,13 +85,13 @@ int run_render(const RenderArgs& args) {
   RendererOptions renderer_options;
   renderer_options.method = *ocean::parse_method(args.method);  // CLI11 checked the word
   renderer_options.reference.max_samples = args.samples;
-  renderer_options.reference.min_samples = std::min(renderer_options.reference.min_samples,
-                                                    args.samples);
+  renderer_options.reference.min_samples =
+      std::min(renderer_options.reference.min_samples, args.samples);
   const std::vector<std::string> problems = {
-      renderer_options.method != ocean::OceanMethod::full &&
-              scene.camera.height >= kSpaceModeHeight
-          ? "--method " + args.method + ": expected a camera below 20000 m (the method draws the "
-                                        "projected grid's sea), got camera.height " +
+      renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight
+          ? "--method " + args.method +
+                ": expected a camera below 20000 m (the method draws the "
+                "projected grid's sea), got camera.height " +
                 format_number(scene.camera.height)
           : "",
       parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
@@ -132,11 +132,10 @@ int run_render(const RenderArgs& args) {
   const RenderStats stats = renderer.stats();
 
   // 3. Outputs, each written whole or not at all.
-  const Metadata metadata =
-      render_metadata(scene, loaded.merged_json, stats,
-                      {{"thalassa:terms", args.terms},
-                       {"thalassa:method", args.method},
-                       {"thalassa:samples", std::to_string(stats.samples)}});
+  const Metadata metadata = render_metadata(scene, loaded.merged_json, stats,
+                                            {{"thalassa:terms", args.terms},
+                                             {"thalassa:method", args.method},
+                                             {"thalassa:samples", std::to_string(stats.samples)}});
   PendingOutputs outputs;
   write_exr(outputs.add(args.exr), image, scene.image.exr_type, metadata);
   if (!png.empty())

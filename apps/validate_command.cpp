@@ -107,8 +107,7 @@ class CaseRunner {
                   {{"thalassa:case", c.name},
                    {"thalassa:method", method->method},
                    {"thalassa:terms", validation::terms_option(term)}});
-        write_png((fs::path(dir_) / t.png).string(), rendered.frames.front(),
-                  scene.image.exposure);
+        write_png((fs::path(dir_) / t.png).string(), rendered.frames.front(), scene.image.exposure);
         if (method == reference) {
           reference_images[term] = rendered;
           if (suite_.reference.check_convergence)
@@ -116,13 +115,13 @@ class CaseRunner {
         }
         const auto ref = reference_images.find(term);
         if (ref != reference_images.end()) {
-          t.metrics = validation::compare_images(rendered.frames.front(), ref->second.frames.front(),
-                                                 view, suite_.horizon);
+          t.metrics = validation::compare_images(rendered.frames.front(),
+                                                 ref->second.frames.front(), view, suite_.horizon);
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
             if (ref->second.frames.size() == rendered.frames.size())
-              t.temporal_error = validation::temporal_error(rendered.frames, ref->second.frames,
-                                                            view.sea_mask());
+              t.temporal_error =
+                  validation::temporal_error(rendered.frames, ref->second.frames, view.sea_mask());
           }
         }
         m.terms.push_back(std::move(t));
@@ -137,14 +136,13 @@ class CaseRunner {
     RendererOptions options;
     options.method = *ocean::parse_method(method.method);
     options.reference.max_samples = suite_.reference.pixel_samples;
-    options.reference.min_samples = std::min(options.reference.min_samples,
-                                             suite_.reference.pixel_samples);
+    options.reference.min_samples =
+        std::min(options.reference.min_samples, suite_.reference.pixel_samples);
     const std::string problem = parse_terms(validation::terms_option(term), options.terms);
     if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
-    const bool over_time =
-        suite_.flicker.frames >= 2 && std::find(suite_.flicker.terms.begin(),
-                                                suite_.flicker.terms.end(),
-                                                term) != suite_.flicker.terms.end();
+    const bool over_time = suite_.flicker.frames >= 2 &&
+                           std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),
+                                     term) != suite_.flicker.terms.end();
     const int frames = over_time ? suite_.flicker.frames : 1;
     Rendered rendered;
     for (int k = 0; k < frames; ++k) {
@@ -209,8 +207,8 @@ int run_validate(const ValidateArgs& args) {
   // 1. The suite, the output folder and gnuplot, before any render.
   Suite suite;
   try {
-    suite = args.suite.empty() ? validation::default_suite()
-                               : validation::load_suite_file(args.suite);
+    suite =
+        args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -249,10 +247,10 @@ int run_validate(const ValidateArgs& args) {
     report.cases.push_back(runner.run(c));
     if (!report.cases.back().passed()) {
       ++failed;
-      print_error("case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
-                  ", got " + std::to_string(report.cases.back().exit_status) +
-                  (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message +
-                                                                  ")"));
+      print_error(
+          "case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
+          ", got " + std::to_string(report.cases.back().exit_status) +
+          (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message + ")"));
     }
   }
   bar.finish();

@@ -84,8 +84,7 @@ void HdrTarget::write_rgba_top_down(const std::vector<float>& rgba) {
     std::copy_n(rgba.begin() + std::ptrdiff_t(y * row), row,
                 bottom_up.begin() + std::ptrdiff_t((height_ - 1 - y) * row));
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-  glTextureSubImage2D(color_.get(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT,
-                      bottom_up.data());
+  glTextureSubImage2D(color_.get(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, bottom_up.data());
   check_error("HDR target write");
 }
 

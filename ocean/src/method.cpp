@@ -4,10 +4,14 @@ namespace thalassa::ocean {
 
 std::string_view method_name(OceanMethod method) {
   switch (method) {
-    case OceanMethod::full: return "full";
-    case OceanMethod::basic: return "basic";
-    case OceanMethod::normals: return "normals";
-    case OceanMethod::reference: return "reference";
+    case OceanMethod::full:
+      return "full";
+    case OceanMethod::basic:
+      return "basic";
+    case OceanMethod::normals:
+      return "normals";
+    case OceanMethod::reference:
+      return "reference";
   }
   return "full";
 }

@@ -174,10 +174,9 @@ class OceanNode final : public gl::Node {
     glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 0, zero);
     glClearNamedFramebufferfv(gbuffer_.get(), GL_COLOR, 1, zero);
     glUseProgram(geometry);
-    const GridCamera camera =
-        make_grid_camera(inputs.camera_right, inputs.camera_up, inputs.camera_forward,
-                         inputs.tan_half_fov_y, inputs.camera_height, inputs.width, inputs.height,
-                         SeaSurface{inputs.sea_curvature});
+    const GridCamera camera = make_grid_camera(
+        inputs.camera_right, inputs.camera_up, inputs.camera_forward, inputs.tan_half_fov_y,
+        inputs.camera_height, inputs.width, inputs.height, SeaSurface{inputs.sea_curvature});
     const double footprint = smallest_footprint(camera);
     if (options_.method == OceanMethod::basic) {
       // Fig. 10's constant BRDF: the full method's unresolved variance where the pixels' footprint
@@ -254,10 +253,14 @@ class OceanNode final : public gl::Node {
   // The first pass's defines for the method (ocean.vert, ocean_geometry.frag).
   gl::Defines method_defines() const {
     switch (options_.method) {
-      case OceanMethod::full: return {};
-      case OceanMethod::basic: return {{"METHOD_BASIC", "1"}};
-      case OceanMethod::normals: return {{"METHOD_NORMALS", "1"}};
-      case OceanMethod::reference: return {{"METHOD_REFERENCE", "1"}};
+      case OceanMethod::full:
+        return {};
+      case OceanMethod::basic:
+        return {{"METHOD_BASIC", "1"}};
+      case OceanMethod::normals:
+        return {{"METHOD_NORMALS", "1"}};
+      case OceanMethod::reference:
+        return {{"METHOD_REFERENCE", "1"}};
     }
     return {};
   }

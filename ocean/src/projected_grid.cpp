@@ -120,8 +120,6 @@ glm::dvec2 image_point(const GridCamera& c, const glm::dvec3& direction) {
           glm::dot(direction, c.up) / (along * c.tan_half_fov_y)};
 }
 
-
-
 // The point (m, nadir ENU) at distance t along `ray` from the camera, its z the surface's sag
 // at its x, y (the ray's own z, h + t d_z, would carry the rounding of h, 1e-16 h, into a sag
 // that can be far smaller).

@@ -151,8 +151,9 @@ struct Renderer::Impl {
     if (options.method == ocean::OceanMethod::reference) {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0))
-        throw std::invalid_argument("ReferenceSampling: expected 1 <= min_samples <= max_samples "
-                                    "and row_tolerance > 0");
+        throw std::invalid_argument(
+            "ReferenceSampling: expected 1 <= min_samples <= max_samples "
+            "and row_tolerance > 0");
     }
     if (sea_visible && !space)
       graph.add(

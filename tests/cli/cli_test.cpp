@@ -281,10 +281,9 @@ TEST_F(Cli, ValidateWritesTheReport) {
   })");
   const Result r = run("validate suite.json -o report");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* file :
-       {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv",
-        "images/near_reference_sun.exr", "images/near_full_all.png", "plots/near_sun_rows.png",
-        "plots/near_error_time.png"})
+  for (const char* file : {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv",
+                           "cases.csv", "images/near_reference_sun.exr", "images/near_full_all.png",
+                           "plots/near_sun_rows.png", "plots/near_error_time.png"})
     EXPECT_TRUE(fs::is_regular_file(dir_ / "report" / file)) << file;
   std::ifstream in(dir_ / "report" / "results.json");
   const auto results = nlohmann::json::parse(in);

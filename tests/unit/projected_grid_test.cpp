@@ -448,15 +448,16 @@ TEST(ProjectedGrid, ImageSeesSeaAndSkyExactly) {
   const GridCamera geostationary =
       make_camera(0, -90, 0, 64, 64, 3.6e7, 20.0, spherical_sea_surface(kEarthRadius));
   for (double s : {-1.0, -0.5, 0.0, 0.5, 1.0})
-    for (glm::dvec2 border : {glm::dvec2(s, -1.0), glm::dvec2(s, 1.0), glm::dvec2(-1.0, s),
-                              glm::dvec2(1.0, s)}) {
+    for (glm::dvec2 border :
+         {glm::dvec2(s, -1.0), glm::dvec2(s, 1.0), glm::dvec2(-1.0, s), glm::dvec2(1.0, s)}) {
       glm::dvec3 point;
       ASSERT_FALSE(sea_point(geostationary, border, point));
     }
   EXPECT_TRUE(image_sees_sea(geostationary, glm::dvec2(-1.0), glm::dvec2(1.0)));
   EXPECT_TRUE(image_sees_sky(geostationary, glm::dvec2(-1.0), glm::dvec2(1.0)));
   // Looking straight up from 4 m with 45 degrees: no sea at all.
-  const GridCamera up = make_camera(0, 90, 0, 64, 48, 4.0, 45.0, spherical_sea_surface(kEarthRadius));
+  const GridCamera up =
+      make_camera(0, 90, 0, 64, 48, 4.0, 45.0, spherical_sea_surface(kEarthRadius));
   EXPECT_FALSE(image_sees_sea(up, glm::dvec2(-1.0), glm::dvec2(1.0)));
 }
 

@@ -226,7 +226,8 @@ TEST_F(ValidationReport, WithoutAReferenceThereIsNothingToPlot) {
   const std::vector<std::string> written = write_report(report, dir_.string());
   EXPECT_TRUE(fs::is_regular_file(dir_ / "index.html"));
   EXPECT_TRUE(fs::is_regular_file(dir_ / "metrics.csv"));
-  for (const std::string& rel : written) EXPECT_EQ(rel.rfind("plots/", 0), std::string::npos) << rel;
+  for (const std::string& rel : written)
+    EXPECT_EQ(rel.rfind("plots/", 0), std::string::npos) << rel;
 }
 
 TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {

@@ -45,11 +45,11 @@ struct FrameInputs {
 // The per-frame uniform block shared by all passes: shaders/common/frame.glsl declares the
 // same std140 layout at binding point kFrameBinding.
 struct FrameUniforms {
-  float camera_right[4];    // xyz; w = tan(fov_y / 2) * aspect
-  float camera_up[4];       // xyz; w = tan(fov_y / 2)
-  float camera_forward[4];  // xyz; w = camera height above the sea, m
-  float sun_direction[4];   // xyz; w unused
-  float viewport[4];        // width, height, 1 / width, 1 / height (pixels)
+  float camera_right[4];      // xyz; w = tan(fov_y / 2) * aspect
+  float camera_up[4];         // xyz; w = tan(fov_y / 2)
+  float camera_forward[4];    // xyz; w = camera height above the sea, m
+  float sun_direction[4];     // xyz; w unused
+  float viewport[4];          // width, height, 1 / width, 1 / height (pixels)
   float sea_curvature[3][4];  // the columns of FrameInputs::sea_curvature (std140 mat3), 1/m
   float pixel_offset[4];      // xy: FrameInputs::pixel_offset (pixels); zw unused
 };
