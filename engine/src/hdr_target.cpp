@@ -83,7 +83,8 @@ void HdrTarget::write_rgba_top_down(const std::vector<float>& rgba) {
   for (int y = 0; y < height_; ++y)
     std::copy_n(rgba.begin() + std::ptrdiff_t(y * row), row,
                 bottom_up.begin() + std::ptrdiff_t((height_ - 1 - y) * row));
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  const StateGuard guard;  // the unpack state below is a host's to keep
+  set_pass_state();        // client memory, tightly packed
   glTextureSubImage2D(color_.get(), 0, 0, 0, width_, height_, GL_RGBA, GL_FLOAT, bottom_up.data());
   check_error("HDR target write");
 }

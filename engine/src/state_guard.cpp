@@ -23,6 +23,13 @@ void set_pass_state() {
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
   glBindSampler(0, 0);
   glBindSampler(1, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+  glPixelStorei(GL_UNPACK_SKIP_ROWS, 0);
+  glPixelStorei(GL_UNPACK_SKIP_PIXELS, 0);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 0);
+  glPixelStorei(GL_UNPACK_SKIP_IMAGES, 0);
 }
 
 StateGuard::StateGuard() {
@@ -55,6 +62,13 @@ StateGuard::StateGuard() {
   glGetIntegerv(GL_PACK_SKIP_ROWS, &pack_skip_rows_);
   glGetIntegerv(GL_PACK_SKIP_PIXELS, &pack_skip_pixels_);
   glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer_);
+  glGetIntegerv(GL_UNPACK_ALIGNMENT, &unpack_alignment_);
+  glGetIntegerv(GL_UNPACK_ROW_LENGTH, &unpack_row_length_);
+  glGetIntegerv(GL_UNPACK_SKIP_ROWS, &unpack_skip_rows_);
+  glGetIntegerv(GL_UNPACK_SKIP_PIXELS, &unpack_skip_pixels_);
+  glGetIntegerv(GL_UNPACK_IMAGE_HEIGHT, &unpack_image_height_);
+  glGetIntegerv(GL_UNPACK_SKIP_IMAGES, &unpack_skip_images_);
+  glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &unpack_buffer_);
 }
 
 StateGuard::~StateGuard() {
@@ -92,6 +106,13 @@ StateGuard::~StateGuard() {
   glPixelStorei(GL_PACK_SKIP_ROWS, pack_skip_rows_);
   glPixelStorei(GL_PACK_SKIP_PIXELS, pack_skip_pixels_);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, static_cast<GLuint>(pack_buffer_));
+  glPixelStorei(GL_UNPACK_ALIGNMENT, unpack_alignment_);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, unpack_row_length_);
+  glPixelStorei(GL_UNPACK_SKIP_ROWS, unpack_skip_rows_);
+  glPixelStorei(GL_UNPACK_SKIP_PIXELS, unpack_skip_pixels_);
+  glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, unpack_image_height_);
+  glPixelStorei(GL_UNPACK_SKIP_IMAGES, unpack_skip_images_);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, static_cast<GLuint>(unpack_buffer_));
 }
 
 }  // namespace thalassa::gl

@@ -117,6 +117,10 @@ struct Renderer::Impl {
         info(query_gl_info()),
         timer(gl::GpuTimer::source_for_renderer(info.renderer)) {
     check_drawable(scene);
+    // Creating the provider uploads tables and images: from client memory, tightly packed,
+    // whatever unpack state a host's context has, which is given back after.
+    const gl::StateGuard guard;
+    gl::set_pass_state();
     if (!info.missing.empty()) {
       std::string missing;
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;

@@ -44,6 +44,13 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
   glEnable(GL_FRAMEBUFFER_SRGB);
   glPixelStorei(GL_PACK_ROW_LENGTH, 7);
+  // The unpack state a host may leave set (the reference method uploads its average).
+  GLuint host_unpack = 0;
+  glCreateBuffers(1, &host_unpack);
+  glNamedBufferStorage(host_unpack, 16, nullptr, 0);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, host_unpack);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ROW_LENGTH, 5);
   auto expect_host_state = [&](const char* after) {
     GLint value = 0, viewport[4] = {0, 0, 0, 0};
     GLboolean mask = GL_TRUE;
@@ -72,6 +79,12 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
     EXPECT_EQ(color_mask[1], GL_FALSE) << after;
     glGetIntegerv(GL_PACK_ROW_LENGTH, &value);
     EXPECT_EQ(value, 7) << after;
+    glGetIntegerv(GL_PIXEL_UNPACK_BUFFER_BINDING, &value);
+    EXPECT_EQ(GLuint(value), host_unpack) << after;
+    glGetIntegerv(GL_UNPACK_ALIGNMENT, &value);
+    EXPECT_EQ(value, 1) << after;
+    glGetIntegerv(GL_UNPACK_ROW_LENGTH, &value);
+    EXPECT_EQ(value, 5) << after;
   };
 
   const Scene scene = test::scene_from(R"({"image": {"width": 64, "height": 48}})");
@@ -82,6 +95,14 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
   expect_host_state("after present()");
   const Image hdr = renderer.image();
   expect_host_state("after image()");
+  {
+    RendererOptions options;
+    options.method = ocean::OceanMethod::reference;
+    options.reference.min_samples = options.reference.max_samples = 2;
+    Renderer reference(*attached, scene, options);
+    reference.render();
+    expect_host_state("after a reference render()");
+  }
   std::vector<unsigned char> pixels(width * height * 4);
   glPixelStorei(GL_PACK_ROW_LENGTH, 0);  // the host reads its own pixels with its own state
   glGetTextureImage(color, 0, GL_RGBA, GL_UNSIGNED_BYTE, int(pixels.size()), pixels.data());
@@ -107,6 +128,8 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
 
   host_owned->make_current();
   glDeleteVertexArrays(1, &host_vao);
+  glBindBuffer(GL_PIXEL_UNPACK_BUFFER, 0);
+  glDeleteBuffers(1, &host_unpack);
   glDeleteFramebuffers(1, &fbo);
   glDeleteTextures(1, &color);
 }
