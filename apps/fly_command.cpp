@@ -1,9 +1,5 @@
 // `thalassa fly`: renders a scripted flight (docs/flight.md) frame by frame into a folder, skips
 // frames already written, reports progress, and optionally encodes an MP4 with ffmpeg.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,8 +17,6 @@
 #include "common.hpp"
 #include "progress.hpp"
 #include "thalassa/thalassa.hpp"
-
-extern char** environ;
 
 namespace thalassa::cli {
 namespace {
@@ -87,35 +81,6 @@ bool already_written(const std::string& exr, const std::string& png,
   } catch (const std::exception&) {
     return false;
   }
-}
-
-std::string find_on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::stringstream folders(path ? path : "");
-  for (std::string folder; std::getline(folders, folder, ':');) {
-    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / program;
-    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return "";
-}
-
-// Runs `argv` with stdin from /dev/null and stdout and stderr into `log`; its exit status, or -1.
-int run_program(const std::vector<std::string>& argv, const std::string& log) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int error = posix_spawnp(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) return -1;
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
 std::string height_text(double metres) {
@@ -297,7 +262,7 @@ int run_fly(const FlyArgs& args) {
   }
   std::string ffmpeg;
   if (!args.video.empty()) {
-    ffmpeg = find_on_path("ffmpeg");
+    ffmpeg = find_program("ffmpeg");
     if (ffmpeg.empty()) {
       print_error("--video " + args.video +
                   ": ffmpeg is not installed (not found on PATH; on Debian: apt-get install "

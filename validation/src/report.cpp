@@ -2,9 +2,6 @@
 // docs/validation.md).
 #include "thalassa/validation/report.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -18,8 +15,7 @@
 #include <sstream>
 
 #include "thalassa/engine/file_io.hpp"
-
-extern char** environ;
+#include "thalassa/engine/program.hpp"
 
 namespace thalassa::validation {
 namespace {
@@ -154,39 +150,6 @@ std::optional<double> optional_from(const ojson& j, const char* key) {
 // ---------------------------------------------------------------------------------------------
 // gnuplot
 
-std::string find_on_path(const std::string& program) {
-  if (program.find('/') != std::string::npos)
-    return access(program.c_str(), X_OK) == 0 ? program : "";
-  const char* path = std::getenv("PATH");
-  std::stringstream folders(path ? path : "");
-  for (std::string folder; std::getline(folders, folder, ':');) {
-    const fs::path candidate = fs::path(folder.empty() ? "." : folder) / program;
-    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return "";
-}
-
-// Runs `gnuplot script` in `dir` with stdin from /dev/null and its output into `log`; its exit
-// status, or -1 when it could not be run or was killed.
-int run_in(const std::string& dir, const std::vector<std::string>& argv, const std::string& log) {
-  std::vector<char*> args;
-  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  pid_t pid = 0;
-  const int error = posix_spawn(&pid, args[0], &actions, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) return -1;
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid) return -1;
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
 // Writes NAME.dat and NAME.gp into `plots` and runs gnuplot on the script, which must write
 // its PNG to the file named by gnuplot variable `out` (a pending name, renamed into place when
 // gnuplot succeeds). Returns the PNG's file name.
@@ -201,11 +164,9 @@ std::string draw(const std::string& gnuplot, const fs::path& plots, const std::s
       std::to_string(options.plot_width) + "," + std::to_string(options.plot_height) +
       " noenhanced font ',10'\n" + "set output out\nset datafile missing 'NaN'\n";
   write_text_atomically((plots / (name + ".gp")).string(), header + script);
-  // Absolute: the child opens the log after it has changed into the folder.
-  const fs::path folder = fs::absolute(plots);
-  const std::string log = (folder / ("." + name + ".log")).string();
+  const std::string log = (plots / ("." + name + ".log")).string();
   const int status =
-      run_in(folder.string(), {gnuplot, "-e", "out='" + pending + "'", name + ".gp"}, log);
+      run_program({gnuplot, "-e", "out='" + pending + "'", name + ".gp"}, log, plots.string());
   std::string output;
   {
     std::ifstream in(log);
@@ -604,7 +565,7 @@ bool CaseResult::passed() const {
 
 std::string find_gnuplot(const ReportOptions& options) {
   const std::string program = options.gnuplot.empty() ? "gnuplot" : options.gnuplot;
-  const std::string found = find_on_path(program);
+  const std::string found = find_program(program);
   if (found.empty())
     throw ReportError("gnuplot is not installed (\"" + program +
                       "\" not found on PATH), and the report's plots need it: on Debian, "

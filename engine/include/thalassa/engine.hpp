@@ -7,4 +7,5 @@
 #include "thalassa/engine/file_io.hpp"
 #include "thalassa/engine/gl_info.hpp"
 #include "thalassa/engine/image.hpp"
+#include "thalassa/engine/program.hpp"
 #include "thalassa/engine/scene.hpp"
