@@ -24,6 +24,7 @@ std::string stats_json(const RenderStats& stats) {
   json["method"] = stats.method;
   json["samples"] = stats.samples;
   json["sample_row_change"] = stats.sample_row_change;
+  if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
   json["sky_provider"] = stats.sky_provider;
   json["setup_ms"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.setup_ms) json["setup_ms"][name] = ms;

@@ -4,6 +4,7 @@
 // exit status 2 are checked to be refused with their message; the others to render finite
 // images. The command's own exit status: 0 when every case ended as it expected, 1 otherwise
 // (or at run time), 2 for a bad suite or bad options.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -112,16 +113,25 @@ class CaseRunner {
           reference_images[term] = rendered;
           if (suite_.reference.check_convergence)
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
+          const std::vector<double>& rows = rendered.stats.resolved_rows;
+          if (!rows.empty())
+            m.resolved_rows.emplace_back(term,
+                                         int(std::count_if(rows.begin(), rows.end(), [](double f) {
+                                           return f >= validation::kResolvedRowFraction;
+                                         })));
         }
         const auto ref = reference_images.find(term);
         if (ref != reference_images.end()) {
-          t.metrics = validation::compare_images(rendered.frames.front(),
-                                                 ref->second.frames.front(), view, suite_.horizon);
+          // Only the rows where the reference's sun is resolved (all rows without the sun).
+          const validation::PixelMask compared = validation::resolved_rows_mask(
+              view.sea_mask(), ref->second.stats.resolved_rows, validation::kResolvedRowFraction);
+          t.metrics = validation::compare_images(
+              rendered.frames.front(), ref->second.frames.front(), view, suite_.horizon, &compared);
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
             if (ref->second.frames.size() == rendered.frames.size())
               t.temporal_error =
-                  validation::temporal_error(rendered.frames, ref->second.frames, view.sea_mask());
+                  validation::temporal_error(rendered.frames, ref->second.frames, compared);
           }
         }
         m.terms.push_back(std::move(t));
@@ -138,6 +148,9 @@ class CaseRunner {
     options.reference.max_samples = suite_.reference.pixel_samples;
     options.reference.min_samples =
         std::min(options.reference.min_samples, suite_.reference.pixel_samples);
+    // The sun's normal samples per pixel: cells of its footprint, at most 64 per side.
+    options.reference.sun_cells =
+        std::clamp(int(std::lround(std::sqrt(double(suite_.reference.sun_normal_samples)))), 1, 64);
     const std::string problem = parse_terms(validation::terms_option(term), options.terms);
     if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
     const bool over_time = suite_.flicker.frames >= 2 &&

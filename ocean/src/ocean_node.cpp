@@ -1,5 +1,6 @@
 #include "thalassa/ocean/gl/ocean_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,6 +22,14 @@ constexpr int kGridMarginCells = 2;
 // The reference's grid cell (pixels): one vertex per pixel (sec. 7.2's reference used about
 // 5 cm triangles; its normals are exact per sample here, its positions to a pixel).
 constexpr double kReferenceGridCell = 1.0;
+
+// The reference's sun integrates over cells of at most this fraction of the shortest wavelength
+// (shaders/ocean/reference_sun.glsl): the shortest wave's phase turns by at most pi / 2 across a
+// cell. Measured (docs/validation.md): halving it moves the sun's resolved 4-row bands by
+// 0.1-11 % (median 4.5 %) at 16 samples per pixel, for 2.1 times the cost.
+constexpr double kReferenceSpacingFraction = 1.0 / 4.0;
+// The most cells per pixel side shaders/ocean/reference_sun.glsl's row buffer holds.
+constexpr int kReferenceMaxCells = 64;
 
 class OceanNode final : public gl::Node {
  public:
@@ -73,6 +82,7 @@ class OceanNode final : public gl::Node {
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sky && options_.sky_shrm) lighting_defines["SKY_SHRM"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
+    if (reference_sun()) lighting_defines["REFERENCE_SUN"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
     // Above kResolvedFadeStart the sky's reflection hands over to the view from space's array
@@ -166,6 +176,7 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(geometry, location(geometry, "n_max"), float(options_.settings.n_max));
     const float scale = float(resolved_wave_scale(inputs.camera_height));
     glProgramUniform1f(geometry, location(geometry, "resolved_wave_scale"), scale);
+    set_reference_sun_uniforms(geometry);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
     ensure_gbuffer(context.target);
@@ -233,7 +244,9 @@ class OceanNode final : public gl::Node {
     normal_texture_ = gl::make_texture(GL_TEXTURE_2D);
     variance_texture_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(normal_texture_.get(), 1, GL_RGBA32F, target.width(), target.height());
-    glTextureStorage2D(variance_texture_.get(), 1, GL_RG32F, target.width(), target.height());
+    // The reference's sun adds two channels (its integrated sun and whether it was resolved).
+    glTextureStorage2D(variance_texture_.get(), 1, reference_sun() ? GL_RGBA32F : GL_RG32F,
+                       target.width(), target.height());
     gbuffer_ = gl::make_framebuffer();
     glNamedFramebufferTexture(gbuffer_.get(), GL_COLOR_ATTACHMENT0, normal_texture_.get(), 0);
     glNamedFramebufferTexture(gbuffer_.get(), GL_COLOR_ATTACHMENT1, variance_texture_.get(), 0);
@@ -260,9 +273,25 @@ class OceanNode final : public gl::Node {
       case OceanMethod::normals:
         return {{"METHOD_NORMALS", "1"}};
       case OceanMethod::reference:
+        if (reference_sun()) return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}};
         return {{"METHOD_REFERENCE", "1"}};
     }
     return {};
+  }
+
+  // Whether the first pass integrates the reference's sun (shaders/ocean/reference_sun.glsl).
+  bool reference_sun() const {
+    return options_.method == OceanMethod::reference && options_.sun_glint;
+  }
+
+  void set_reference_sun_uniforms(GLuint program) const {
+    if (!reference_sun() || waves_.waves.empty()) return;
+    glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"),
+                       float(kReferenceSpacingFraction * waves_.lambda_min));
+    glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"),
+                       std::clamp(options_.reference_sun_cells, 1, kReferenceMaxCells));
+    glProgramUniform1f(program, glGetUniformLocation(program, "fresnel_r"),
+                       float(options_.settings.fresnel_r));
   }
 
   // The grid's cell (pixels): the scene's, or for the reference kReferenceGridCell.
@@ -325,6 +354,7 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(program, glGetUniformLocation(program, "n_max"),
                        float(options_.settings.n_max));
     glProgramUniform1f(program, glGetUniformLocation(program, "resolved_wave_scale"), scale);
+    set_reference_sun_uniforms(program);
     glProgramUniform2f(program, glGetUniformLocation(program, "constant_variance"),
                        float(constant_variance_.x), float(constant_variance_.y));
     glUseProgram(program);

@@ -154,10 +154,11 @@ struct Renderer::Impl {
                        std::to_string(scene.camera.height));
     if (options.method == ocean::OceanMethod::reference) {
       const ReferenceSampling& r = options.reference;
-      if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0))
+      if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
+            r.sun_cells >= 1 && r.sun_cells <= 64))
         throw std::invalid_argument(
-            "ReferenceSampling: expected 1 <= min_samples <= max_samples "
-            "and row_tolerance > 0");
+            "ReferenceSampling: expected 1 <= min_samples <= max_samples, "
+            "row_tolerance > 0 and 1 <= sun_cells <= 64");
     }
     if (sea_visible && !space)
       graph.add(
@@ -169,7 +170,8 @@ struct Renderer::Impl {
                                   .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
                                   .sky_shrm = scene.ocean.sky_filter == "shrm",
                                   .provider = provider,
-                                  .method = options.method}));
+                                  .method = options.method,
+                                  .reference_sun_cells = options.reference.sun_cells}));
   }
 
   // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
@@ -222,8 +224,9 @@ struct Renderer::Impl {
       const std::vector<double> totals = row_totals(count);
       if (!half_totals.empty()) {
         sample_row_change = 0.0;
+        const double brightest = *std::max_element(totals.begin(), totals.end());
         for (int y = 0; y < height; ++y)
-          if (totals[y] > 0.0)
+          if (totals[y] > kNegligibleRow * brightest)
             sample_row_change =
                 std::max(sample_row_change, std::abs(totals[y] - half_totals[y]) / totals[y]);
         if (sample_row_change < reference.row_tolerance) break;
@@ -235,9 +238,26 @@ struct Renderer::Impl {
     samples = count;
     std::vector<float> average(sum.size());
     for (std::size_t i = 0; i < sum.size(); ++i) average[i] = float(sum[i] / count);
+    // With the reference's sun, alpha is 1 where its sun resolved every wave and 0 where not
+    // (ocean_lighting.frag): each row's mean, then alpha back to 1 like every other image's.
+    resolved_rows.clear();
+    if (renderer_options.terms.sun) {
+      resolved_rows.assign(height, 0.0);
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x)
+          resolved_rows[y] += sum[(std::size_t(y) * width + x) * 4 + 3] / count;
+        resolved_rows[y] /= width;
+      }
+    }
+    for (std::size_t i = 3; i < average.size(); i += 4) average[i] = 1.0f;
     target.write_rgba_top_down(average);
     return ms;
   }
+
+  // Rows whose total is below this fraction of the brightest row's do not count in the
+  // reference's convergence test: a row the sun's glint barely touches (1e-12 of the brightest
+  // was seen) changes by 100 % between sample counts while adding nothing to the image.
+  static constexpr double kNegligibleRow = 1e-3;
 
   // The Halton sequence's radical inverse of i in `base`, in [0, 1).
   static double radical_inverse(int base, int i) {
@@ -250,6 +270,7 @@ struct Renderer::Impl {
   ReferenceSampling reference;
   int samples = 1;
   double sample_row_change = 0.0;
+  std::vector<double> resolved_rows;
 };
 
 Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions options)
@@ -342,6 +363,7 @@ RenderStats Renderer::stats() const {
   stats.method = std::string(ocean::method_name(m.renderer_options.method));
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
+  stats.resolved_rows = m.resolved_rows;
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
   if (m.provider->sky_map_ms() > 0.0)

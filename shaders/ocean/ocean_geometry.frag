@@ -48,6 +48,10 @@ uniform float resolved_wave_scale;
 // method's in the image's foreground (ocean/method.hpp).
 uniform vec2 constant_variance;
 #endif
+#if defined(METHOD_REFERENCE) && defined(REFERENCE_SUN)
+#include "ocean/ross_brdf.glsl"
+#include "ocean/reference_sun.glsl"
+#endif
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
@@ -61,7 +65,9 @@ void main() {
   const vec3 x = rest_position;
 #endif
   // The pixel's footprint on the sea (m): its larger side, so that no resolved wave aliases.
-  const float footprint = max(max(length(dFdx(x)), length(dFdy(x))), 1e-6);
+  const vec3 x_dx = dFdx(x);
+  const vec3 x_dy = dFdy(x);
+  const float footprint = max(max(length(x_dx), length(x_dy)), 1e-6);
 #ifdef BACKSTOP
   if (distance < 0.0) discard;  // the sky's pixel
 #endif
@@ -121,7 +127,12 @@ void main() {
   const vec2 slope_dy = dFdy(wind_slope);
   const vec2 pixel_variance =
       min((slope_dx * slope_dx + slope_dy * slope_dy) / 12.0, vec2(ANTIALIAS_MAX_VARIANCE));
-#if defined(METHOD_REFERENCE) || defined(METHOD_NORMALS)
+#if defined(METHOD_REFERENCE) && defined(REFERENCE_SUN)
+  // A mirror for the sky; z: the sun reflected by the pixel's footprint, resolved cell by cell
+  // (ocean/reference_sun.glsl), w: 1 where its cells resolve every wave.
+  variance_out =
+      vec4(0.0, 0.0, ReferenceReflectedSun(x, x_dx, x_dy, v, FrameSunDirection(), downwind));
+#elif defined(METHOD_REFERENCE) || defined(METHOD_NORMALS)
   // A mirror: no BRDF width (the sun term keeps its disc's, ocean/ross_brdf.glsl).
   variance_out = vec4(0.0);
 #elif defined(METHOD_BASIC)

@@ -131,8 +131,14 @@ void main() {
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
+#ifdef REFERENCE_SUN
+  // The reference's: integrated over the pixel's footprint by the first pass
+  // (ocean/reference_sun.glsl).
+  sea += light.sun_irradiance * variance.z;
+#else
   sea += light.sun_irradiance *
          OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
+#endif
 #endif
 
   // Aerial perspective to the point.
@@ -141,6 +147,12 @@ void main() {
 #ifndef AIR_TERM
   in_scattered = vec3(0.0);
 #endif
+#ifdef REFERENCE_SUN
+  // Alpha carries whether the reference's sun resolved every wave here (Renderer's
+  // draw_reference turns it into each row's resolved fraction and restores alpha to 1).
+  radiance = vec4(sea * transmittance + in_scattered, variance.w);
+#else
   radiance = vec4(sea * transmittance + in_scattered, 1.0);
+#endif
 #endif
 }

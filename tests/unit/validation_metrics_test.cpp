@@ -307,3 +307,24 @@ TEST(ValidationMetrics, FlickerOfIdenticalFramesIsZero) {
 
 }  // namespace
 }  // namespace thalassa::validation
+
+namespace thalassa::validation {
+namespace {
+
+// The reference's resolved rows narrow the compared pixels row by row, keep the mask as it is
+// without them (a reference without the sun), and refuse rows that do not match the image.
+TEST(ValidationMetrics, ResolvedRowsMaskKeepsOnlyResolvedRows) {
+  PixelMask mask = PixelMask::all(3, 4);
+  mask.inside[0] = 0;  // pixel (0, 0) is not sea
+  const PixelMask kept = resolved_rows_mask(mask, {1.0, 0.5, 0.99, 0.0}, 0.99);
+  EXPECT_EQ(kept.count(), 2 + 0 + 3 + 0);
+  EXPECT_FALSE(kept(0, 0));
+  EXPECT_TRUE(kept(1, 0));
+  EXPECT_FALSE(kept(1, 1));
+  EXPECT_TRUE(kept(2, 2));
+  EXPECT_EQ(resolved_rows_mask(mask, {}, 0.99).inside, mask.inside);
+  EXPECT_THROW(resolved_rows_mask(mask, {1.0, 1.0}, 0.99), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace thalassa::validation

@@ -204,7 +204,7 @@ ErrorStats relative_errors(const Image& method, const Image& reference, const Pi
 // - the band's summary averages the non-empty bins' values with equal weight per bin.
 
 HorizonBand horizon_band(const Image& method, const Image& reference, const ViewGeometry& view,
-                         const HorizonBandOptions& options) {
+                         const HorizonBandOptions& options, const PixelMask* compared) {
   check_same_size(method, reference, "horizon_band");
   if (method.width != view.width() || method.height != view.height())
     throw std::invalid_argument("horizon_band: images of " + std::to_string(method.width) + "x" +
@@ -226,6 +226,7 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
       for (int x = 0; x < method.width; ++x) {
         const double beta = view.below_horizon(x, y);
         if (!(beta >= 0.0 && beta < depth)) continue;
+        if (compared && !(*compared)(x, y)) continue;
         const int k = std::min(bins - 1, static_cast<int>(beta / bin));
         const double w = view.azimuth_weight(x, y);
         const double r = luminance(reference.pixel(x, y));
@@ -324,15 +325,34 @@ double temporal_error(std::span<const Image> method, std::span<const Image> refe
 // ---------------------------------------------------------------------------------------------
 
 TermMetrics compare_images(const Image& method, const Image& reference, const ViewGeometry& view,
-                           const HorizonBandOptions& options) {
+                           const HorizonBandOptions& options, const PixelMask* compared) {
   check_same_size(method, reference, "compare_images");
+  const PixelMask& mask = compared ? *compared : view.sea_mask();
+  if (mask.width != method.width || mask.height != method.height)
+    throw std::invalid_argument("compare_images: a mask of " + std::to_string(mask.width) + "x" +
+                                std::to_string(mask.height) + " for images of " +
+                                std::to_string(method.width) + "x" + std::to_string(method.height));
   TermMetrics m;
-  m.row_totals = row_totals(method, &view.sea_mask());
-  m.row_ratios = row_ratios(m.row_totals, row_totals(reference, &view.sea_mask()));
+  m.row_totals = row_totals(method, &mask);
+  m.row_ratios = row_ratios(m.row_totals, row_totals(reference, &mask));
   m.max_row_deviation = max_row_deviation(m.row_ratios);
-  m.error = relative_errors(method, reference, view.sea_mask());
-  m.horizon = horizon_band(method, reference, view, options);
+  m.error = relative_errors(method, reference, mask);
+  m.horizon = horizon_band(method, reference, view, options, compared);
   return m;
+}
+
+PixelMask resolved_rows_mask(const PixelMask& mask, const std::vector<double>& resolved_rows,
+                             double min_fraction) {
+  if (resolved_rows.empty()) return mask;
+  if (static_cast<int>(resolved_rows.size()) != mask.height)
+    throw std::invalid_argument("resolved_rows_mask: " + std::to_string(resolved_rows.size()) +
+                                " rows for a mask of " + std::to_string(mask.height));
+  PixelMask out = mask;
+  for (int y = 0; y < out.height; ++y)
+    if (!(resolved_rows[y] >= min_fraction))
+      for (int x = 0; x < out.width; ++x)
+        out.inside[static_cast<std::size_t>(y) * out.width + x] = 0;
+  return out;
 }
 
 }  // namespace thalassa::validation

@@ -546,6 +546,13 @@ std::string index_html(const Report& report,
         h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
       h += "</p>\n";
     }
+    if (ref && !ref->resolved_rows.empty()) {
+      h += "<p>Rows where the reference's sun resolves every wave (the only rows compared for "
+           "that term):";
+      for (const auto& [term, rows] : ref->resolved_rows)
+        h += " " + html(term) + " " + std::to_string(rows) + ";";
+      h += "</p>\n";
+    }
     h += "<p>";
     for (const auto& [title, png] : plots[ci])
       h += "<a href=\"" + html(png) + "\"><img class=\"plot\" src=\"" + html(png) + "\" alt=\"" +
@@ -603,6 +610,8 @@ std::string report_json(const Report& report) {
       jm["plain"] = m.plain;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
+      jm["resolved_rows"] = ojson::object();
+      for (const auto& [term, rows] : m.resolved_rows) jm["resolved_rows"][term] = rows;
       jm["terms"] = ojson::array();
       for (const TermResult& t : m.terms) {
         const ErrorStats& e = t.metrics.error;
@@ -675,6 +684,9 @@ Report report_from_json(const std::string& json_text) {
       m.plain = jm.at("plain");
       for (const auto& [term, change] : jm.at("convergence").items())
         m.convergence.push_back({term, get_number(change)});
+      if (jm.contains("resolved_rows"))
+        for (const auto& [term, rows] : jm.at("resolved_rows").items())
+          m.resolved_rows.push_back({term, rows.get<int>()});
       for (const ojson& jt : jm.at("terms")) {
         TermResult t;
         t.term = jt.at("term");

@@ -45,6 +45,10 @@ struct RenderStats {
   // (its convergence test); 1 sample and 0 for the other methods.
   int samples = 1;
   double sample_row_change = 0.0;
+  // The reference method with the sun term: per image row (top first), the fraction of its
+  // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
+  // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
+  std::vector<double> resolved_rows;
   // One-off costs, wall-clock ms: "sky.provider" (creating it, the atmosphere's tables computed
   // or loaded from the cache included), "atmosphere.precompute" / "atmosphere.load",
   // "sky.map", "sky.map_array".
@@ -65,11 +69,19 @@ struct LightTerms {
 // How the reference method samples each pixel: frames drawn at pixel offsets of the Halton
 // (2, 3) sequence and averaged, doubling from min_samples until doubling changes every image
 // row's total luminance by less than row_tolerance (relative), or max_samples are reached
-// (Bruneton et al. 2010 sec. 7.2's supersampled reference; issue 6, point 1).
+// (Bruneton et al. 2010 sec. 7.2's supersampled reference; issue 6, point 1). Rows darker than
+// 1e-3 of the brightest row do not count.
+//
+// The reflected sun is not point-sampled (its 0.27 degree disc would need millions of samples per
+// pixel): each sample integrates it over the pixel's footprint cut into cells that resolve the
+// shortest wave, at most sun_cells per pixel side ([1, 64]; shaders/ocean/reference_sun.glsl).
+// Pixels that would need more are drawn with sun_cells and reported unresolved
+// (RenderStats::resolved_rows).
 struct ReferenceSampling {
   int min_samples = 16;
   int max_samples = 1024;
   double row_tolerance = 0.01;
+  int sun_cells = 64;
 };
 
 struct RendererOptions {

@@ -158,9 +158,11 @@ struct HorizonBand {
   int pixels = 0;  // pixels in the band
 };
 
-// Pixels whose centre lies from 0 (inclusive) to depth_deg (exclusive) below the horizon.
+// Pixels whose centre lies from 0 (inclusive) to depth_deg (exclusive) below the horizon (and,
+// when `compared` is given, inside it).
 HorizonBand horizon_band(const Image& method, const Image& reference, const ViewGeometry& view,
-                         const HorizonBandOptions& options = {});
+                         const HorizonBandOptions& options = {},
+                         const PixelMask* compared = nullptr);
 
 // ---------------------------------------------------------------------------------------------
 // Temporal flicker.
@@ -189,7 +191,16 @@ struct TermMetrics {
   ErrorStats error;                       // over the sea mask
   HorizonBand horizon;
 };
+// `compared`: the pixels measured (the view's sea mask when null); the validation passes the sea
+// pixels of the rows where the reference's sun resolved every wave (resolved_rows_mask).
 TermMetrics compare_images(const Image& method, const Image& reference, const ViewGeometry& view,
-                           const HorizonBandOptions& options = {});
+                           const HorizonBandOptions& options = {},
+                           const PixelMask* compared = nullptr);
+
+// The pixels of `mask` in the rows whose resolved fraction (RenderStats::resolved_rows, top row
+// first) is at least min_fraction; `mask` itself when resolved_rows is empty (a reference without
+// the sun term).
+PixelMask resolved_rows_mask(const PixelMask& mask, const std::vector<double>& resolved_rows,
+                             double min_fraction);
 
 }  // namespace thalassa::validation

@@ -46,7 +46,14 @@ struct MethodResult {
   // The reference only, with ReferenceSettings::check_convergence: per term, the largest
   // |row total at twice the samples / row total - 1| (max_row_deviation).
   std::vector<std::pair<std::string, double>> convergence;
+  // The reference only, per term with the sun: the image rows where its sun resolved every wave
+  // (RenderStats::resolved_rows >= kResolvedRowFraction); the other methods are compared with it
+  // on those rows only, for that term.
+  std::vector<std::pair<std::string, int>> resolved_rows;
 };
+
+// A row counts as resolved by the reference's sun when at least this fraction of it is.
+inline constexpr double kResolvedRowFraction = 0.99;
 
 struct CaseResult {
   std::string name;

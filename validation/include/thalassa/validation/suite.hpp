@@ -79,8 +79,11 @@ struct FlickerSettings {
 // on. check_convergence: also render the reference with twice the samples and report the
 // largest change of a row's total (it must stay below 1%).
 struct ReferenceSettings {
-  int pixel_samples = 16;       // samples per pixel, [1, 4096]
-  int sun_normal_samples = 64;  // normal samples per pixel for the sun's disc, [1, 4096]
+  int pixel_samples = 16;  // samples per pixel, [1, 4096]
+  // Normal samples per pixel for the sun's disc, [1, 4096]: the reference's sun integrates over
+  // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
+  // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun.glsl).
+  int sun_normal_samples = 4096;
   bool check_convergence = false;
 };
 

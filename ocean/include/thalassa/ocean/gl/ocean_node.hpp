@@ -33,6 +33,10 @@ struct OceanNodeOptions {
   // The shading method (ocean/method.hpp). The reference's node draws one sample per pixel, at
   // the frame's pixel_offset; the renderer averages many.
   OceanMethod method = OceanMethod::full;
+  // The reference's sun (shaders/ocean/reference_sun.glsl): at most this many cells per pixel
+  // side, [1, 64], when integrating the sun over a pixel's footprint. A pixel whose footprint
+  // needs more to resolve the shortest wave is drawn with this many and marked unresolved.
+  int reference_sun_cells = 64;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);

@@ -1,0 +1,125 @@
+// The reference method's reflected sun (issue 6, point 1; Bruneton, Neyret & Holzschuch 2010,
+// sec. 7.2: "several normal samples per pixel - up to 512 - to correctly sample the Sun, which
+// occupies only 1/8000th of the hemisphere"). Included by ocean_geometry.frag with
+// METHOD_REFERENCE and REFERENCE_SUN, after its Waves buffer.
+//
+// Why not point samples. A mirror reflects the sun's 0.27 degree disc toward the eye only where
+// the slope lies in a disc of radius ~2.3e-3 around the mirror slope: about 7e-5 of a 10 m/s
+// sea's slopes. Averaging point-sampled normals converges as 1 / sqrt(hits): 256 samples per
+// pixel still changed an image row's sun by 96 % per doubling (stop 13).
+//
+// What is done instead. The pixel's footprint on the sea at rest (the parallelogram spanned by
+// the rasterised rest positions' screen derivatives) is cut into Kx x Ky cells no wider than
+// `reference_spacing` (a fraction of the shortest wave's length, so that every wave is resolved
+// and its slope varies nearly linearly across a cell). On each cell the slope field is the
+// bilinear patch of its four corners' exact slopes (every wave, w_n = 1), so the cell's slopes
+// spread uniformly over a parallelogram in slope space of edges d_u, d_v; the sun that the cell
+// reflects is the Ross BRDF (ocean/ross_brdf.glsl) of the cell's mean normal with that spread's
+// second moments, (d_u^2 + d_v^2) / 12 per axis (a box's variance). Summed over cells this is
+// the integral over the footprint of delta(slope(x) - mirror slope) - the sum over the
+// footprint's points that mirror the sun of 1 / |det d slope / d x| - smoothed by a kernel of
+// each cell's spread: no sampling noise from the sun's tiny disc, and a bias that vanishes as
+// the cells shrink (the kernel adds its variance, <= a few % of the sea's, to the slope
+// distribution; docs/validation.md measures it). Cells are weighted by their displaced area
+// projected toward the eye, N.v with N = d_dx x d_dy (per unit rest area: the visible area, as
+// the rasteriser weights the pixel's samples); back-facing cells (N.v < 0) are hidden (0).
+// Masking of a cell by a crest inside the same pixel is not modelled: the rasterised grid
+// resolves visibility at the pixel's scale only.
+//
+// Frame pixel offsets (the Halton samples the reference averages) jitter each cell inside
+// itself, so the cells of all samples together cover the pixel uniformly (a box filter, as for
+// the other terms' samples).
+
+#ifndef THALASSA_OCEAN_REFERENCE_SUN_GLSL
+#define THALASSA_OCEAN_REFERENCE_SUN_GLSL
+
+// m: the largest cell side on the sea at rest that counts as resolved (ocean_node.cpp:
+// kReferenceSpacingFraction x the shortest wavelength of the set).
+uniform float reference_spacing;
+// Most cells per pixel side (sqrt of the suite's sun_normal_samples); REFERENCE_MAX_CELLS is
+// the compile-time bound of the row buffer below.
+uniform int reference_max_cells;
+const int REFERENCE_MAX_CELLS = 64;
+uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighting.frag
+
+// Slope (dimensionless, nadir-frame east and north of the local tangent plane: n = (s, 1)
+// normalised, as ocean_geometry.frag's `slope`) and visible area weight N.v (per unit rest area)
+// of the surface with every wave, at rest position x (m, nadir frame).
+vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
+  vec3 d_dx = vec3(1.0, 0.0, 0.0);
+  vec3 d_dy = vec3(0.0, 1.0, 0.0);
+  for (int i = 0; i < wave_count; ++i) {
+    const vec4 a = waves[2 * i];
+    const vec4 b = waves[2 * i + 1];
+    const vec2 direction = vec2(a.x, a.y);
+    vec3 wave_dx, wave_dy;
+    TrochoidDisplacementDerivatives(direction, a.z, a.w,
+                                    TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
+    d_dx += wave_dx;
+    d_dy += wave_dy;
+  }
+  const vec3 n_local = cross(d_dx, d_dy);  // unnormalised: |n_local| is the displaced area ratio
+  const float weight = max(dot(FrameSeaTangentFrame(x) * n_local, v), 0.0);
+  return vec3(n_local.xy / max(n_local.z, 1e-6), weight);
+}
+
+// The sun reflected by the pixel whose sample point on the sea at rest is x (m, nadir frame),
+// with rest-position screen derivatives dx, dy (m per pixel), per unit L_sun Omega_sun as
+// OceanReflectedSun; v toward the eye, sun toward the sun (nadir frame), downwind unit (east,
+// north). Returns (sun factor, 1 if every cell is at most reference_spacing wide else 0).
+vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 downwind) {
+  const int max_cells = clamp(reference_max_cells, 1, REFERENCE_MAX_CELLS);
+  const float spacing = max(reference_spacing, 1e-6);
+  const float want_x = ceil(length(dx) / spacing);
+  const float want_y = ceil(length(dy) / spacing);
+  const int kx = int(clamp(want_x, 1.0, float(max_cells)));
+  const int ky = int(clamp(want_y, 1.0, float(max_cells)));
+  const float resolved = (want_x <= float(max_cells) && want_y <= float(max_cells)) ? 1.0 : 0.0;
+  // Corner (i, j) of the cells in pixel units from the sample point x, which lies at the pixel's
+  // centre + o (FrameViewRay): the cells' corners at centre + (i / k - 0.5) + o / k.
+  const vec2 o = frame_pixel_offset.xy;
+  const vec2 k = vec2(float(kx), float(ky));
+  const vec2 corner0 = -0.5 + o / k - o;
+  const vec2 step = 1.0 / k;
+  const vec2 crosswind = vec2(-downwind.y, downwind.x);
+
+  // The previous row of corners: slope (xy) and weight (z).
+  vec3 previous[REFERENCE_MAX_CELLS + 1];
+  float sum_weight = 0.0, sum_sun = 0.0;
+  for (int j = 0; j <= ky; ++j) {
+    vec3 left = vec3(0.0);
+    for (int i = 0; i <= kx; ++i) {
+      const vec2 c = corner0 + vec2(float(i), float(j)) * step;
+      const vec3 here = ReferenceSlopeAndWeight(x + c.x * dx + c.y * dy, v);
+      if (i > 0 && j > 0) {
+        const vec3 c00 = previous[i - 1], c10 = previous[i], c01 = left, c11 = here;
+        const vec2 slope = 0.25 * (c00.xy + c10.xy + c01.xy + c11.xy);
+        const float weight = 0.25 * (c00.z + c10.z + c01.z + c11.z);
+        // The parallelogram's edges in slope space, along the wind and across it.
+        const vec2 d_u = 0.5 * ((c10.xy - c00.xy) + (c11.xy - c01.xy));
+        const vec2 d_v = 0.5 * ((c01.xy - c00.xy) + (c11.xy - c10.xy));
+        const vec2 u_w = vec2(dot(d_u, downwind), dot(d_u, crosswind));
+        const vec2 v_w = vec2(dot(d_v, downwind), dot(d_v, crosswind));
+        const vec2 spread = (u_w * u_w + v_w * v_w) / 12.0;
+        if (weight > 0.0) {
+          const vec3 cell_point = x + (c.x - 0.5 * step.x) * dx + (c.y - 0.5 * step.y) * dy;
+          vec3 n = FrameSeaTangentFrame(cell_point) * normalize(vec3(slope, 1.0));
+          if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
+          const vec3 wind = vec3(downwind, 0.0);
+          const vec3 t_x = normalize(wind - dot(wind, n) * n);
+          const vec3 t_y = cross(n, t_x);
+          sum_sun += weight * OceanReflectedSun(OceanToTangentFrame(v, t_x, t_y, n),
+                                                OceanToTangentFrame(sun, t_x, t_y, n), spread,
+                                                fresnel_r);
+          sum_weight += weight;
+        }
+      }
+      if (i > 0) previous[i - 1] = left;
+      left = here;
+    }
+    previous[kx] = left;
+  }
+  return vec2(sum_weight > 0.0 ? sum_sun / sum_weight : 0.0, resolved);
+}
+
+#endif  // THALASSA_OCEAN_REFERENCE_SUN_GLSL
