@@ -20,6 +20,7 @@
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/camera_frame.hpp"
+#include "thalassa/planet/local_features.hpp"
 #include "thalassa/planet/nadir_frame.hpp"
 
 namespace thalassa {
@@ -140,13 +141,19 @@ struct Renderer::Impl {
     const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
     const bool space = scene.camera.height >= kSpaceModeHeight;
+    // Wakes and calm areas in view (issue 9), placed in the nadir frame; none for most scenes.
+    std::shared_ptr<const ocean::LocalFeatures> features;
+    if (sea_visible && (!scene.wakes.empty() || !scene.calm_areas.empty()))
+      features = std::make_shared<const ocean::LocalFeatures>(
+          place_local_features(Planet(scene.planet), scene, nadir));
     if (sea_visible && space)
       graph.add(make_space_ocean_node({.settings = scene.ocean,
                                        .sun_glint = sun_up && options.terms.sun,
                                        .sky = options.terms.sky,
                                        .sea = options.terms.sea,
                                        .air = options.terms.air,
-                                       .provider = provider}));
+                                       .provider = provider,
+                                       .features = features}));
     if (space && options.method != ocean::OceanMethod::full)
       throw SceneError("--method " + std::string(ocean::method_name(options.method)) +
                        ": expected a camera below " + std::to_string(int(kSpaceModeHeight)) +
@@ -169,7 +176,8 @@ struct Renderer::Impl {
                                   .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
                                   .sky_shrm = scene.ocean.sky_filter == "shrm",
                                   .provider = provider,
-                                  .method = options.method}));
+                                  .method = options.method,
+                                  .features = features}));
   }
 
   // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.

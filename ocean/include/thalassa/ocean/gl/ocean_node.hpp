@@ -12,6 +12,7 @@
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/local_features.hpp"
 #include "thalassa/ocean/method.hpp"
 
 namespace thalassa::ocean {
@@ -33,6 +34,9 @@ struct OceanNodeOptions {
   // The shading method (ocean/method.hpp). The reference's node draws one sample per pixel, at
   // the frame's pixel_offset; the renderer averages many.
   OceanMethod method = OceanMethod::full;
+  // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
+  // or empty: none, and none of their shader code is compiled.
+  std::shared_ptr<const LocalFeatures> features;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);

@@ -1,0 +1,84 @@
+// thalassa — the CPU side of a frame's wakes and calm areas (ocean/local_features.hpp) and
+// their upload (ocean/gl/local_features_gpu.hpp).
+#include "thalassa/ocean/local_features.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "thalassa/engine/gl/objects.hpp"
+#include "thalassa/ocean/gl/local_features_gpu.hpp"
+
+namespace thalassa::ocean {
+
+glm::dvec4 kelvin_wake_gpu_params(const KelvinWakeParams& params) {
+  return {kelvin_transverse_wavenumber(params.speed),
+          params.amplitude * kelvin_reference_normalisation(), params.draft, params.length};
+}
+
+double calm_tail_variance_bound(double steepness) {
+  const double x = std::min(std::abs(steepness), 1.0);
+  return 2.0 / (1.0 + std::sqrt((1.0 - x) * (1.0 + x)));
+}
+
+LocalFeatureBuffers::LocalFeatureBuffers(const LocalFeatures& features) {
+  if (features.calm && features.calm->width > 0 && features.calm->height > 0) {
+    const CalmScaleChart& chart = *features.calm;
+    calm_texture_ = gl::make_texture(GL_TEXTURE_2D);
+    glTextureStorage2D(calm_texture_.get(), 1, GL_R32F, chart.width, chart.height);
+    glTextureSubImage2D(calm_texture_.get(), 0, 0, 0, chart.width, chart.height, GL_RED, GL_FLOAT,
+                        chart.scale.data());
+    // Bilinear between samples; beyond the chart its border samples (s = 1) go on.
+    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    calm_areas_ = std::max(chart.areas, 1);
+    calm_width_ = chart.width;
+    calm_height_ = chart.height;
+    calm_origin_ = chart.origin;
+    calm_spacing_ = chart.spacing;
+  }
+  if (!features.wakes.empty()) {
+    std::vector<float> packed;
+    for (const WakeInFrame& wake : features.wakes) {
+      const glm::dvec4 p = kelvin_wake_gpu_params(wake.params);
+      for (double value :
+           {wake.ship.x, wake.ship.y, wake.course.x, wake.course.y, p.x, p.y, p.z, p.w})
+        packed.push_back(static_cast<float>(value));
+    }
+    wake_buffer_ = gl::make_buffer();
+    glNamedBufferStorage(wake_buffer_.get(), static_cast<GLsizeiptr>(packed.size() * sizeof(float)),
+                         packed.data(), 0);
+    wake_count_ = static_cast<int>(features.wakes.size());
+  }
+}
+
+void LocalFeatureBuffers::add_defines(gl::Defines& defines) const {
+  if (calm_areas()) defines["CALM_AREAS"] = "1";
+  if (wake_count_ > 0) defines["KELVIN_WAKES"] = "1";
+}
+
+void LocalFeatureBuffers::set_uniforms(unsigned program) const {
+  if (calm_areas())
+    glProgramUniform3f(program, glGetUniformLocation(program, "calm_chart"), float(calm_origin_.x),
+                       float(calm_origin_.y), float(1.0 / calm_spacing_));
+  if (wake_count_ > 0)
+    glProgramUniform1i(program, glGetUniformLocation(program, "wake_count"), wake_count_);
+}
+
+void LocalFeatureBuffers::bind() const {
+  if (calm_areas()) glBindTextureUnit(kCalmScaleUnit, calm_texture_.get());
+  if (wake_count_ > 0)
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWakeBufferBinding, wake_buffer_.get());
+}
+
+std::vector<std::string> LocalFeatureBuffers::built() const {
+  std::vector<std::string> list;
+  if (calm_areas())
+    list.push_back("ocean.calm_areas." + std::to_string(calm_areas_) + ".chart." +
+                   std::to_string(calm_width_) + "x" + std::to_string(calm_height_));
+  if (wake_count_ > 0) list.push_back("ocean.kelvin_wakes." + std::to_string(wake_count_));
+  return list;
+}
+
+}  // namespace thalassa::ocean
