@@ -3,22 +3,30 @@
 //   of points of the ship frame (amplitudes, arguments, wave vectors, the linear height);
 // - a scene with calm areas and a wake renders them, lists them in `built`, and a scene without
 //   them compiles none of their code.
+// - geodetic placement (issue 9, point 4): a mirror-flat calm area placed by latitude and
+//   longitude appears where the camera projects it, the projection computed with GeographicLib's
+//   own conversions, from 2 m, 2 km and 400 km, across the antimeridian and near a pole.
 //   THALASSA_TEST_BACKEND=egl build/tests/gpu_tests --gtest_filter='LocalWaves*'
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
+
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/LocalCartesian.hpp>
 
 #include "test_support.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
 #include "thalassa/ocean/kelvin_wake.hpp"
 #include "thalassa/ocean/local_features.hpp"
+#include "thalassa/planet/camera_frame.hpp"
 
 namespace thalassa {
 namespace {
@@ -135,6 +143,134 @@ TEST_F(LocalWavesTest, KelvinWakeMatchesTheDoubleReference) {
     EXPECT_LE(worst_argument, 1e-3);
     EXPECT_LE(worst_vector, 2e-6);
     EXPECT_LE(worst_height, 1e-4);
+  }
+}
+
+double Luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+// Issue 9, point 4. The scene's camera looks at a point P ahead along its heading; a calm area
+// of scale 0 (a mirror) is a geodesic square around P (corners from GeographicLib's Direct
+// problem), lit so that the rough sea's glint covers it. The pixels whose radiance the area
+// changes are the square seen by the renderer; their centroid is compared with the centroid of
+// the square's corners projected through GeographicLib (geodetic -> ECEF -> the camera's local
+// east-north-up, LocalCartesian) and the camera model (camera_basis). The square is small on
+// screen (about 10 to 30 pixels), so its projected centroid is the quadrilateral's to well under
+// a pixel, and the fade (a tenth of the half-side) is symmetric. Tolerances: 1 pixel where the
+// area changes only normals and BRDF (2 km, 400 km: the mask is the square to a pixel); from 2 m
+// it changes the projected grid's geometry too, whose vertices are kGridCell = 8 pixels apart,
+// so the changed region is the square grown by up to a cell, raggedly, with the random waves
+// (1.5 m/s) displacing its edges: 2 pixels (a quarter of a cell).
+TEST(LocalWavesPlacement, CalmAreaAppearsWhereGeographicLibProjectsIt) {
+  auto context = test::make_test_context();
+  const GeographicLib::Geodesic& geodesic = GeographicLib::Geodesic::WGS84();
+  struct Case {
+    const char* name;
+    double lat, lon, height, heading, pitch;
+    double ahead;  // m: geodesic distance from the nadir to the square's centre
+    double half;   // m: half the square's side
+  };
+  const Case cases[] = {
+      {"2 m, antimeridian", -35.0, 179.99999, 2.0, 90.0, -25.0, 4.3, 0.6},
+      {"2 km, antimeridian", -35.0, 179.995, 2000.0, 90.0, -30.0, 3460.0, 150.0},
+      {"400 km, antimeridian", -35.0, 178.0, 400000.0, 90.0, -60.0, 225000.0, 15000.0},
+      {"2 m, near the north pole", 89.99, 30.0, 2.0, 10.0, -25.0, 4.3, 0.6},
+      {"2 km, near the north pole", 89.99, 30.0, 2000.0, 10.0, -30.0, 3460.0, 150.0},
+      {"400 km, near the north pole", 89.5, 30.0, 400000.0, 10.0, -60.0, 225000.0, 15000.0},
+  };
+  constexpr int kWidth = 160, kHeight = 120;
+  // A pixel counts as showing the area where its luminance changes by more than this (relative).
+  constexpr double kChanged = 0.05;
+  for (const Case& c : cases) {
+    // The square's centre and corners (degrees).
+    double lat_c, lon_c, azi;
+    geodesic.Direct(c.lat, c.lon, c.heading, c.ahead, lat_c, lon_c, azi);
+    double corners[4][2];
+    for (int k = 0; k < 4; ++k)
+      geodesic.Direct(lat_c, lon_c, azi + 45.0 + 90.0 * k, c.half * std::sqrt(2.0), corners[k][0],
+                      corners[k][1]);
+    char json[2048];
+    // The sun ahead, kSunOffset degrees higher than the elevation of the centre's reflection:
+    // the rough sea's glint covers the square, the mirror does not show the sun's disc.
+    constexpr double kSunOffset = 15.0;
+    const double sun_zenith = std::clamp(90.0 + c.pitch - kSunOffset, 5.0, 85.0);
+    std::snprintf(json, sizeof json,
+                  R"({"image": {"width": %d, "height": %d},
+                      "camera": {"lat": %.10f, "lon": %.10f, "height": %.3f, "heading": %.3f,
+                                 "pitch": %.3f},
+                      "sun": {"zenith": %.3f, "azimuth": %.3f},
+                      "ocean": {"wind_speed": 1.5}})",
+                  kWidth, kHeight, c.lat, c.lon, c.height, c.heading, c.pitch, sun_zenith,
+                  c.heading);
+    const Scene plain = test::scene_from(json);
+    Scene calm = plain;
+    CalmAreaSettings area;
+    area.scale = 0.0;
+    area.fade = 0.1 * c.half;
+    for (const auto& corner : corners) area.exterior.push_back({corner[0], corner[1]});
+    calm.calm_areas = {area};
+    Image images[2];
+    for (int i = 0; i < 2; ++i) {
+      Renderer renderer(*context, i == 0 ? plain : calm);
+      renderer.render();
+      images[i] = renderer.image();
+    }
+    // The relative change of each pixel's luminance.
+    std::vector<double> change(std::size_t(kWidth) * kHeight);
+    for (std::size_t p = 0; p < change.size(); ++p) {
+      const double before = Luminance(&images[0].rgba[4 * p]);
+      change[p] = std::abs(Luminance(&images[1].rgba[4 * p]) - before) / std::max(before, 1e-6);
+    }
+    double sx = 0.0, sy = 0.0;
+    int count = 0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x)
+        if (change[std::size_t(y) * kWidth + x] > kChanged) {
+          sx += x + 0.5;
+          sy += y + 0.5;
+          ++count;
+        }
+    const glm::dvec2 measured(sx / count, sy / count);
+
+    // GeographicLib's projection of the corners into the image (pixels, row 0 at the top).
+    const GeographicLib::LocalCartesian camera(c.lat, c.lon, c.height,
+                                               GeographicLib::Geocentric::WGS84());
+    const CameraBasis basis = camera_basis(c.heading, c.pitch, 0.0);
+    const double tan_half = std::tan(0.5 * plain.camera.fov_y * std::numbers::pi / 180.0);
+    const double aspect = double(kWidth) / kHeight;
+    glm::dvec2 projected[4];
+    for (int k = 0; k < 4; ++k) {
+      glm::dvec3 d;
+      camera.Forward(corners[k][0], corners[k][1], 0.0, d.x, d.y, d.z);
+      const double along = glm::dot(d, basis.forward);
+      const double u = glm::dot(d, basis.right) / (along * tan_half * aspect);
+      const double v = glm::dot(d, basis.up) / (along * tan_half);
+      projected[k] = {0.5 * (u + 1.0) * kWidth, 0.5 * (1.0 - v) * kHeight};
+    }
+    // The quadrilateral's area centroid (shoelace).
+    double area2 = 0.0;
+    glm::dvec2 centroid(0.0);
+    for (int k = 0; k < 4; ++k) {
+      const glm::dvec2 a = projected[k], b = projected[(k + 1) % 4];
+      const double cross = a.x * b.y - b.x * a.y;
+      area2 += cross;
+      centroid += (a + b) * cross;
+    }
+    centroid /= 3.0 * area2;
+    const double error = glm::length(measured - centroid);
+    std::printf(
+        "%-28s %4d pixels changed (quadrilateral %.0f), centroid (%.2f, %.2f), "
+        "GeographicLib (%.2f, %.2f): %.2f px\n",
+        c.name, count, 0.5 * std::abs(area2), measured.x, measured.y, centroid.x, centroid.y,
+        error);
+    ASSERT_GT(count, 30) << c.name;
+    const double tolerance = c.height < 100.0 ? 2.0 : 1.0;
+    EXPECT_LE(error, tolerance) << c.name;
+    if (error > tolerance || std::getenv("THALASSA_TEST_WRITE_IMAGES")) {
+      std::string base = test::output_dir() + "/placement_" + c.name;
+      std::replace(base.begin(), base.end(), ' ', '_');
+      write_png(base + ".plain.png", images[0], 10.0);
+      write_png(base + ".calm.png", images[1], 10.0);
+    }
   }
 }
 
