@@ -27,6 +27,7 @@
 #include "thalassa/ocean/kelvin_wake.hpp"
 #include "thalassa/ocean/local_features.hpp"
 #include "thalassa/planet/camera_frame.hpp"
+#include "thalassa/planet/flight.hpp"
 
 namespace thalassa {
 namespace {
@@ -272,6 +273,66 @@ TEST(LocalWavesPlacement, CalmAreaAppearsWhereGeographicLibProjectsIt) {
       write_png(base + ".calm.png", images[1], 10.0);
     }
   }
+}
+
+// Whether any of `built` contains `part`.
+bool Built(const RenderStats& stats, const std::string& part) {
+  return std::any_of(stats.built.begin(), stats.built.end(),
+                     [&](const std::string& item) { return item.find(part) != std::string::npos; });
+}
+
+// Issue 9, point 5: only what a scene needs. Features in view are built (statistics and shader
+// defines); features out of view (1000 km away) and scenes without any compile none of their
+// code.
+TEST(LocalWavesLeaveOut, FeaturesAreBuiltOnlyWhenInView) {
+  auto context = test::make_test_context();
+  const std::string base = R"({"image": {"width": 48, "height": 32},
+      "camera": {"lat": 10, "lon": 20, "height": 50, "pitch": -20, "heading": 0}})";
+  const std::string near = R"({"wakes": [{"lat": 10.01, "lon": 20, "heading": 0, "speed": 8}],
+      "calm_areas": [{"polygon": [{"lat": 10.001, "lon": 19.999}, {"lat": 10.001, "lon": 20.001},
+                                  {"lat": 10.002, "lon": 20.0}]}]})";
+  const std::string far = R"({"wakes": [{"lat": 19, "lon": 20, "heading": 0, "speed": 8}],
+      "calm_areas": [{"polygon": [{"lat": 10, "lon": 29.9}, {"lat": 10, "lon": 30},
+                                  {"lat": 10.1, "lon": 30}]}]})";
+  for (const auto& [extra, expected] :
+       {std::pair<std::string, bool>{"{}", false}, {near, true}, {far, false}}) {
+    SceneBuilder builder;
+    builder.load_text(base, "base");
+    builder.load_text(extra, "features");
+    Renderer renderer(*context, builder.build());
+    renderer.render();
+    const RenderStats stats = renderer.stats();
+    EXPECT_EQ(Built(stats, "ocean.calm_areas"), expected) << extra;
+    EXPECT_EQ(Built(stats, "ocean.kelvin_wakes"), expected) << extra;
+    EXPECT_EQ(Built(stats, "CALM_AREAS"), expected) << extra;
+    EXPECT_EQ(Built(stats, "KELVIN_WAKES"), expected) << extra;
+  }
+}
+
+// Issue 9, point 6: the demo's scenes and flight parse, and render their wake and slick (small
+// images; the first and last frames of the flight).
+TEST(LocalWavesDemo, DemoScenesAndFlightRenderTheirFeatures) {
+  auto context = test::make_test_context();
+  auto check = [&](const Scene& scene, const std::string& name) {
+    Renderer renderer(*context, scene);
+    renderer.render();
+    const RenderStats stats = renderer.stats();
+    EXPECT_TRUE(Built(stats, "ocean.calm_areas.1")) << name;
+    EXPECT_TRUE(Built(stats, "ocean.kelvin_wakes.1")) << name;
+    for (float v : renderer.image().rgba) ASSERT_TRUE(std::isfinite(v)) << name;
+  };
+  for (const char* name : {"wake_50m", "wake_2km", "wake_400km"}) {
+    SceneBuilder builder;
+    builder.load_file(std::string(THALASSA_SOURCE_DIR "/data/scenes/wake_demo/") + name + ".json");
+    builder.set("image.width=64");
+    builder.set("image.height=36");
+    check(builder.build(), name);
+  }
+  Flight flight = Flight::load_file(THALASSA_SOURCE_DIR "/data/flights/wake_demo.json");
+  flight.set("image.width=64");
+  flight.set("image.height=36");
+  for (int frame : {0, flight.frame_count() - 1})
+    check(flight.frame_scene(frame), "wake_demo frame " + std::to_string(frame));
 }
 
 }  // namespace
