@@ -42,8 +42,11 @@ LocalFeatureBuffers::LocalFeatureBuffers(const LocalFeatures& features) {
     std::vector<float> packed;
     for (const WakeInFrame& wake : features.wakes) {
       const glm::dvec4 p = kelvin_wake_gpu_params(wake.params);
-      for (double value :
-           {wake.ship.x, wake.ship.y, wake.course.x, wake.course.y, p.x, p.y, p.z, p.w})
+      // Slightly widened (1e-4 relative) so that float rounding never cuts the Airy tail.
+      const double half_width = 1.0001 * kelvin_wake_half_width(wake.params);
+      for (double value : {wake.ship.x, wake.ship.y, wake.course.x, wake.course.y, p.x, p.y, p.z,
+                           p.w, half_width, 0.0, 0.0, 0.0})
+
         packed.push_back(static_cast<float>(value));
     }
     wake_buffer_ = gl::make_buffer();

@@ -7,6 +7,7 @@
 
 #include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/calm_area.hpp"
+#include "thalassa/planet/camera_frame.hpp"
 #include "thalassa/planet/ship_wake.hpp"
 
 namespace thalassa {
@@ -24,6 +25,15 @@ constexpr int kChartBlock = 8;
 constexpr double kChartDistanceTolerance = 0.01;
 // Samples of s = 1 kept around the areas' projected extent, so the chart's border is outside.
 constexpr int kChartBorderSamples = 2;
+
+// Rays sampled along each side of the image for its footprint on the sea.
+constexpr int kFootprintRaysPerSide = 16;
+// The footprint box's margin around each sampled point, relative to its distance from the nadir
+// (the footprint's border bulges between two sampled rays by a small fraction of their distance:
+// the horizon arc between azimuths delta apart by L (1 - cos(delta / 2)) < 1e-3 L here), and at
+// least kFootprintMinMargin metres (the waves' horizontal displacement, a pixel's own size).
+constexpr double kFootprintRelativeMargin = 0.02;
+constexpr double kFootprintMinMargin = 5.0;
 
 double horizon_length(const Planet& planet, double height) {
   const double h = std::max(height, 0.0);
@@ -150,6 +160,49 @@ ocean::CalmScaleChart sample_chart(const Planet& planet, const NadirFrame& frame
   return chart;
 }
 
+// The box of the frame's (x, y) plane (m) that holds every point of the sea the image sees: the
+// image border's rays met with the sea at rest, or, for a ray above the horizon, the point of
+// the horizon's tangent length along its azimuth (the sea below that ray, in the image column,
+// reaches no farther); the border's image is the boundary of the footprint.
+struct FootprintBox {
+  glm::dvec2 lo{INFINITY}, hi{-INFINITY};
+  bool intersects(glm::dvec2 a, glm::dvec2 b) const {
+    return a.x <= hi.x && b.x >= lo.x && a.y <= hi.y && b.y >= lo.y;
+  }
+};
+
+FootprintBox screen_footprint(const Planet& planet, const Scene& scene, const NadirFrame& frame) {
+  FootprintBox box;
+  const CameraBasis basis =
+      camera_basis(scene.camera.heading, scene.camera.pitch, scene.camera.roll);
+  const double tan_half = std::tan(0.5 * scene.camera.fov_y * kDegree);
+  const double aspect = double(scene.image.width) / scene.image.height;
+  const double height = std::max(frame.camera_height, 1e-3);
+  const double reach = kFootprintMargin * horizon_length(planet, height) + 1.0;
+  auto add = [&](double u, double v) {
+    const glm::dvec3 ray = glm::normalize(view_ray(basis, tan_half, aspect, u, v));
+    glm::dvec2 p;
+    if (const auto t = ocean::sea_surface_distance(frame.sea_surface, height, ray)) {
+      p = glm::dvec2(ray) * *t;
+    } else {
+      const double horizontal = std::hypot(ray.x, ray.y);
+      if (!(horizontal > 0.0)) return;  // straight up
+      p = glm::dvec2(ray) / horizontal * reach;
+    }
+    const double margin = std::max(kFootprintRelativeMargin * glm::length(p), kFootprintMinMargin);
+    box.lo = glm::min(box.lo, p - margin);
+    box.hi = glm::max(box.hi, p + margin);
+  };
+  for (int k = 0; k <= kFootprintRaysPerSide; ++k) {
+    const double w = -1.0 + 2.0 * k / kFootprintRaysPerSide;
+    add(w, -1.0);
+    add(w, 1.0);
+    add(-1.0, w);
+    add(1.0, w);
+  }
+  return box;
+}
+
 }  // namespace
 
 GeoBounds view_footprint(const Planet& planet, const NadirFrame& frame) {
@@ -166,6 +219,7 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
   const GeoBounds footprint = view_footprint(planet, frame);
   if (footprint.empty()) return features;
   const LocalFrame local(planet, frame.nadir.lat, frame.nadir.lon, 0.0);
+  const FootprintBox screen = screen_footprint(planet, scene, frame);
 
   for (const WakeSettings& settings : scene.wakes) {
     const ShipWake wake(planet, settings);
@@ -186,6 +240,18 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
                      .amplitude = settings.amplitude,
                      .draft = settings.draft,
                      .length = settings.length};
+    // On screen: the wake's rectangle b in [0, length], |y| <= half-width against the image's
+    // footprint.
+    const double half_width = ocean::kelvin_wake_half_width(placed.params);
+    const glm::dvec2 n(-placed.course.y, placed.course.x);
+    glm::dvec2 lo(INFINITY), hi(-INFINITY);
+    for (double b : {0.0, settings.length})
+      for (double y : {-half_width, half_width}) {
+        const glm::dvec2 corner = placed.ship - b * placed.course + y * n;
+        lo = glm::min(lo, corner);
+        hi = glm::max(hi, corner);
+      }
+    if (!screen.intersects(lo, hi)) continue;
     features.wakes.push_back(placed);
   }
 
@@ -212,10 +278,9 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
     areas.push_back(std::move(area));
   }
   if (!areas.empty()) {
-    // Only what the camera can see: the horizon's square around the nadir.
-    const double reach = kFootprintMargin * horizon_length(planet, frame.camera_height) + 1.0;
-    lo = glm::max(lo, glm::dvec2(-reach));
-    hi = glm::min(hi, glm::dvec2(reach));
+    // Only what the image sees.
+    lo = glm::max(lo, screen.lo);
+    hi = glm::min(hi, screen.hi);
     if (lo.x < hi.x && lo.y < hi.y)
       features.calm = sample_chart(planet, frame, areas, lo, hi, chart_samples);
   }

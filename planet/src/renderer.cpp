@@ -102,7 +102,8 @@ struct Renderer::Impl {
   gl::VertexArray present_vao;
   gl::GpuTimer timer;
   std::shared_ptr<atmosphere::SkyProvider> provider;
-  double provider_ms = 0.0;  // creating the provider: tables computed or loaded, uploaded
+  double provider_ms = 0.0;   // creating the provider: tables computed or loaded, uploaded
+  double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
@@ -143,9 +144,14 @@ struct Renderer::Impl {
     const bool space = scene.camera.height >= kSpaceModeHeight;
     // Wakes and calm areas in view (issue 9), placed in the nadir frame; none for most scenes.
     std::shared_ptr<const ocean::LocalFeatures> features;
-    if (sea_visible && (!scene.wakes.empty() || !scene.calm_areas.empty()))
+    if (sea_visible && (!scene.wakes.empty() || !scene.calm_areas.empty())) {
+      const auto start = std::chrono::steady_clock::now();
       features = std::make_shared<const ocean::LocalFeatures>(
           place_local_features(Planet(scene.planet), scene, nadir));
+      features_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+    }
     if (sea_visible && space)
       graph.add(make_space_ocean_node({.settings = scene.ocean,
                                        .sun_glint = sun_up && options.terms.sun,
@@ -351,6 +357,7 @@ RenderStats Renderer::stats() const {
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
+  if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
   if (m.provider->sky_map_ms() > 0.0)
     stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());

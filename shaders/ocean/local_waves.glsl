@@ -14,19 +14,29 @@
 #include "ocean/kelvin_wake.glsl"
 #include "ocean/trochoids.glsl"
 
-// Two vec4 per wake (ocean/src/local_features_gpu.cpp): (ship x, ship y (m), course e x, e y)
-// and (k0 rad/m, a_ref N m, draft m, length m).
+// Three vec4 per wake (ocean/src/local_features.cpp): (ship x, ship y (m), course e x, e y),
+// (k0 rad/m, a_ref N m, draft m, length m) and (half-width m: ocean::kelvin_wake_half_width,
+// beyond which the wake is exactly 0; 0, 0, 0).
 layout(std430, binding = 3) readonly buffer Wakes { vec4 wakes[]; };
 uniform int wake_count;
 
 // The wake i's two branches at the nadir-frame point p (m), their wave vectors turned into the
 // nadir frame.
 void LocalWake(int i, vec2 p, out KelvinWakeWave transverse, out KelvinWakeWave divergent) {
-  const vec4 frame = wakes[2 * i];
+  const vec4 frame = wakes[3 * i];
+  const vec4 params = wakes[3 * i + 1];
   const vec2 e = frame.zw;
   const vec2 n = vec2(-e.y, e.x);  // to port
   const vec2 d = p - frame.xy;
-  KelvinWake(wakes[2 * i + 1], -dot(d, e), dot(d, n), transverse, divergent);
+  const float b = -dot(d, e), y = dot(d, n);
+  // Outside the wake's rectangle (0, length) x (-half-width, half-width) it is exactly 0: the
+  // pixels away from a wake pay only this test (issue 9, point 5).
+  if (!(b > 0.0 && b < params.w && abs(y) < wakes[3 * i + 2].x)) {
+    transverse = KelvinEmptyWave();
+    divergent = KelvinEmptyWave();
+    return;
+  }
+  KelvinWake(params, b, y, transverse, divergent);
   transverse.wave_vector = transverse.wave_vector.x * e + transverse.wave_vector.y * n;
   divergent.wave_vector = divergent.wave_vector.x * e + divergent.wave_vector.y * n;
 }

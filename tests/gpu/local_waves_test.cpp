@@ -282,20 +282,23 @@ bool Built(const RenderStats& stats, const std::string& part) {
 }
 
 // Issue 9, point 5: only what a scene needs. Features in view are built (statistics and shader
-// defines); features out of view (1000 km away) and scenes without any compile none of their
-// code.
+// defines); features out of view (1000 km away, or behind the camera) and scenes without any
+// compile none of their code.
 TEST(LocalWavesLeaveOut, FeaturesAreBuiltOnlyWhenInView) {
   auto context = test::make_test_context();
   const std::string base = R"({"image": {"width": 48, "height": 32},
       "camera": {"lat": 10, "lon": 20, "height": 50, "pitch": -20, "heading": 0}})";
-  const std::string near = R"({"wakes": [{"lat": 10.01, "lon": 20, "heading": 0, "speed": 8}],
+  const std::string near =
+      R"({"wakes": [{"lat": 10.01, "lon": 20, "heading": 0, "speed": 8, "length": 500}],
       "calm_areas": [{"polygon": [{"lat": 10.001, "lon": 19.999}, {"lat": 10.001, "lon": 20.001},
                                   {"lat": 10.002, "lon": 20.0}]}]})";
   const std::string far = R"({"wakes": [{"lat": 19, "lon": 20, "heading": 0, "speed": 8}],
       "calm_areas": [{"polygon": [{"lat": 10, "lon": 29.9}, {"lat": 10, "lon": 30},
                                   {"lat": 10.1, "lon": 30}]}]})";
+  // The same features behind the camera (looking south): within the horizon, not in the image.
+  const std::string behind = near.substr(0, near.size() - 1) + R"(, "camera": {"heading": 180}})";
   for (const auto& [extra, expected] :
-       {std::pair<std::string, bool>{"{}", false}, {near, true}, {far, false}}) {
+       {std::pair<std::string, bool>{"{}", false}, {near, true}, {far, false}, {behind, false}}) {
     SceneBuilder builder;
     builder.load_text(base, "base");
     builder.load_text(extra, "features");

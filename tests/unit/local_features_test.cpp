@@ -63,6 +63,9 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
   const Planet planet;
   for (const double lon : {10.0, 179.99}) {
     Scene scene = SceneAt(43.0, lon, 2000.0);
+    scene.camera.heading = 0.0;  // north, down on both areas, the whole of them in the image
+    scene.camera.pitch = -60.0;
+    scene.camera.fov_y = 90.0;
     scene.calm_areas = {Square(43.01, lon, 0.01, 0.2, 300.0),
                         Square(43.018, lon + 0.008, 0.006, 0.5, 100.0)};
     const NadirFrame frame = make_nadir_frame(planet, scene.camera);
@@ -143,8 +146,9 @@ TEST(LocalFeatures, WakeInThePlaneMatchesTheGeodesicShipFrame) {
   }
 }
 
-// Culling (issue 9, point 5): a wake and a calm area 1000 km away are not placed; a scene with
-// none places nothing; the footprint of a camera under the sea is empty.
+// Culling (issue 9, point 5): a wake and a calm area 1000 km away are not placed from 2 km, nor
+// from 400 km where the image does not see them; a scene with none places nothing; the
+// footprint of a camera under the sea is empty.
 TEST(LocalFeatures, FeaturesOutOfViewAreCulled) {
   const Planet planet;
   Scene scene = SceneAt(10.0, 20.0, 2000.0);
@@ -154,12 +158,19 @@ TEST(LocalFeatures, FeaturesOutOfViewAreCulled) {
   wake.speed = 10.0;
   scene.wakes = {wake};
   scene.calm_areas = {Square(10.0, 30.0, 0.1, 0.0, 100.0)};
+  scene.camera.pitch = -90.0;
   const NadirFrame frame = make_nadir_frame(planet, scene.camera);
   EXPECT_TRUE(place_local_features(planet, scene, frame).empty());
   EXPECT_TRUE(place_local_features(planet, SceneAt(10.0, 20.0, 2000.0), frame).empty());
-  // From 400 km the horizon is 2300 km away: both are in view.
+  // From 400 km the horizon is 2300 km away: both are in view of a camera looking down with a
+  // wide lens, and neither of one looking south along the horizon.
   Scene high = scene;
   high.camera.height = 400000.0;
+  high.camera.pitch = -5.0;
+  high.camera.heading = 180.0;
+  EXPECT_TRUE(place_local_features(planet, high, make_nadir_frame(planet, high.camera)).empty());
+  high.camera.pitch = -90.0;
+  high.camera.fov_y = 170.0;
   const ocean::LocalFeatures seen =
       place_local_features(planet, high, make_nadir_frame(planet, high.camera));
   EXPECT_EQ(seen.wakes.size(), 1u);

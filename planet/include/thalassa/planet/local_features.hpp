@@ -21,7 +21,9 @@ inline constexpr int kCalmChartSamples = 256;
 // sees no feature: the empty region.
 GeoBounds view_footprint(const Planet& planet, const NadirFrame& frame);
 
-// The scene's wakes at scene.time and calm areas that intersect view_footprint, in the frame:
+// The scene's wakes at scene.time and calm areas that intersect view_footprint and, in the
+// frame's plane, the box of what the image sees of the sea (its border's rays met with the sea,
+// or taken to the horizon), placed in the frame:
 // each ship where ShipWake puts it, its course at the ship turned into the frame's axes; the
 // calm areas' amplitude scale sampled in double (CalmArea::amplitude_scale, multiplied over
 // overlapping areas) on a grid of the frame's (x, y) plane that covers the areas in view (each
