@@ -2,6 +2,7 @@
 // their upload (ocean/gl/local_features_gpu.hpp).
 #include "thalassa/ocean/local_features.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,30 @@ namespace thalassa::ocean {
 glm::dvec4 kelvin_wake_gpu_params(const KelvinWakeParams& params) {
   return {kelvin_transverse_wavenumber(params.speed),
           params.amplitude * kelvin_reference_normalisation(), params.draft, params.length};
+}
+
+WakeFrameCoordinates wake_frame_coordinates(const WakeInFrame& wake, glm::dvec2 p) {
+  WakeFrameCoordinates c;
+  double best = INFINITY, along = 0.0;
+  for (std::size_t j = 0; j + 1 < wake.track.size(); ++j) {
+    const glm::dvec2 newer = wake.track[j], older = wake.track[j + 1];
+    const double len = glm::length(newer - older);
+    if (!(len > 0.0)) continue;
+    const glm::dvec2 e = (newer - older) / len;  // the direction of travel
+    const double t = std::clamp(glm::dot(p - older, e), 0.0, len);
+    const glm::dvec2 foot = older + t * e;
+    const double d = glm::length(p - foot);
+    if (d < best) {
+      best = d;
+      c.behind = along + (len - t);
+      c.lateral = glm::dot(p - foot, glm::dvec2(-e.y, e.x)) < 0.0 ? -d : d;
+      c.course = e;
+    }
+    along += len;
+  }
+  c.present = best <= kelvin_wake_half_width(wake.params) && c.behind > 0.0 &&
+              c.behind < std::min(wake.params.length, along);
+  return c;
 }
 
 double calm_tail_variance_bound(double steepness) {
@@ -39,19 +64,35 @@ LocalFeatureBuffers::LocalFeatureBuffers(const LocalFeatures& features) {
     calm_spacing_ = chart.spacing;
   }
   if (!features.wakes.empty()) {
-    std::vector<float> packed;
+    // Per wake three vec4 (shaders/ocean/local_waves.glsl): the parameters, (half-width, first
+    // point, point count, 0) and the box (m) its polyline grown by the half-width covers; the
+    // polylines' points in a second buffer.
+    std::vector<float> packed, points;
     for (const WakeInFrame& wake : features.wakes) {
       const glm::dvec4 p = kelvin_wake_gpu_params(wake.params);
       // Slightly widened (1e-4 relative) so that float rounding never cuts the Airy tail.
       const double half_width = 1.0001 * kelvin_wake_half_width(wake.params);
-      for (double value : {wake.ship.x, wake.ship.y, wake.course.x, wake.course.y, p.x, p.y, p.z,
-                           p.w, half_width, 0.0, 0.0, 0.0})
-
+      glm::dvec2 lo(INFINITY), hi(-INFINITY);
+      for (const glm::dvec2& q : wake.track) {
+        lo = glm::min(lo, q);
+        hi = glm::max(hi, q);
+      }
+      lo -= half_width;
+      hi += half_width;
+      for (double value : {p.x, p.y, p.z, p.w, half_width, double(points.size() / 2),
+                           double(wake.track.size()), 0.0, lo.x, lo.y, hi.x, hi.y})
         packed.push_back(static_cast<float>(value));
+      for (const glm::dvec2& q : wake.track) {
+        points.push_back(static_cast<float>(q.x));
+        points.push_back(static_cast<float>(q.y));
+      }
     }
     wake_buffer_ = gl::make_buffer();
     glNamedBufferStorage(wake_buffer_.get(), static_cast<GLsizeiptr>(packed.size() * sizeof(float)),
                          packed.data(), 0);
+    track_buffer_ = gl::make_buffer();
+    glNamedBufferStorage(track_buffer_.get(),
+                         static_cast<GLsizeiptr>(points.size() * sizeof(float)), points.data(), 0);
     wake_count_ = static_cast<int>(features.wakes.size());
   }
 }
@@ -71,8 +112,10 @@ void LocalFeatureBuffers::set_uniforms(unsigned program) const {
 
 void LocalFeatureBuffers::bind() const {
   if (calm_areas()) glBindTextureUnit(kCalmScaleUnit, calm_texture_.get());
-  if (wake_count_ > 0)
+  if (wake_count_ > 0) {
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWakeBufferBinding, wake_buffer_.get());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kWakeTrackBufferBinding, track_buffer_.get());
+  }
 }
 
 std::vector<std::string> LocalFeatureBuffers::built() const {

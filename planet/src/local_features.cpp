@@ -1,6 +1,8 @@
 // thalassa — a scene's wakes and calm areas placed in a frame (planet/local_features.hpp).
 #include "thalassa/planet/local_features.hpp"
 
+#include <GeographicLib/Geodesic.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -25,6 +27,13 @@ constexpr int kChartBlock = 8;
 constexpr double kChartDistanceTolerance = 0.01;
 // Samples of s = 1 kept around the areas' projected extent, so the chart's border is outside.
 constexpr int kChartBorderSamples = 2;
+
+// The past track's geodesics are laid in the frame's plane as pieces of at most this length (m)
+// (a geodesic piece of length l at distance r from the nadir bows away from its chord there by
+// about r l^2 / (8 R^2): below 0.1 mm for l = 250 m, r = 100 km), and at most kMaxTrackPieces
+// of them over the wake's length.
+constexpr double kTrackPieceLength = 250.0;
+constexpr double kMaxTrackPieces = 96.0;
 
 // Rays sampled along each side of the image for its footprint on the sea.
 constexpr int kFootprintRaysPerSide = 16;
@@ -220,6 +229,7 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
   if (footprint.empty()) return features;
   const LocalFrame local(planet, frame.nadir.lat, frame.nadir.lon, 0.0);
   const FootprintBox screen = screen_footprint(planet, scene, frame);
+  const GeographicLib::Geodesic geodesic(planet.equatorial_radius(), planet.flattening());
 
   for (const WakeSettings& settings : scene.wakes) {
     const ShipWake wake(planet, settings);
@@ -229,28 +239,34 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
     if (!ship.present || !(ship.speed >= ocean::kMinimumWakeSpeed)) continue;
     ocean::WakeInFrame placed;
     placed.name = settings.name;
-    placed.ship = glm::dvec2(local.offset(ship.lat, ship.lon, 0.0));
-    // The course at the ship, turned from its own east-north into the frame's.
-    const EnuBasis at_ship = planet.enu_basis(ship.lat, ship.lon);
-    const glm::dvec3 course = at_ship.east * std::sin(ship.heading * kDegree) +
-                              at_ship.north * std::cos(ship.heading * kDegree);
-    placed.course = glm::normalize(
-        glm::dvec2(glm::dot(course, frame.enu.east), glm::dot(course, frame.enu.north)));
     placed.params = {.speed = ship.speed,
                      .amplitude = settings.amplitude,
                      .draft = settings.draft,
                      .length = settings.length};
-    // On screen: the wake's rectangle b in [0, length], |y| <= half-width against the image's
-    // footprint.
-    const double half_width = ocean::kelvin_wake_half_width(placed.params);
-    const glm::dvec2 n(-placed.course.y, placed.course.x);
-    glm::dvec2 lo(INFINITY), hi(-INFINITY);
-    for (double b : {0.0, settings.length})
-      for (double y : {-half_width, half_width}) {
-        const glm::dvec2 corner = placed.ship - b * placed.course + y * n;
-        lo = glm::min(lo, corner);
-        hi = glm::max(hi, corner);
+    // The past track in the frame's plane, each geodesic cut into pieces of at most
+    // kTrackPieceLength (or of length / kMaxTrackPieces for long wakes).
+    const std::vector<GeoPoint> past = wake.past_track(scene.time);
+    const double piece = std::max(kTrackPieceLength, settings.length / kMaxTrackPieces);
+    placed.track.push_back(glm::dvec2(local.offset(past[0].lat, past[0].lon, 0.0)));
+    for (std::size_t k = 0; k + 1 < past.size(); ++k) {
+      double length, azi1, azi2;
+      geodesic.Inverse(past[k].lat, past[k].lon, past[k + 1].lat, past[k + 1].lon, length, azi1,
+                       azi2);
+      const int pieces = std::max(1, int(std::ceil(length / piece)));
+      for (int m = 1; m <= pieces; ++m) {
+        double lat, lon;
+        geodesic.Direct(past[k].lat, past[k].lon, azi1, length * m / pieces, lat, lon);
+        placed.track.push_back(glm::dvec2(local.offset(lat, lon, 0.0)));
       }
+    }
+    if (placed.track.size() < 2) continue;
+    // On screen: the track's box grown by the half-width against the image's footprint.
+    const double half_width = ocean::kelvin_wake_half_width(placed.params);
+    glm::dvec2 lo(INFINITY), hi(-INFINITY);
+    for (const glm::dvec2& q : placed.track) {
+      lo = glm::min(lo, q - half_width);
+      hi = glm::max(hi, q + half_width);
+    }
     if (!screen.intersects(lo, hi)) continue;
     features.wakes.push_back(placed);
   }

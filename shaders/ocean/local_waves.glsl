@@ -14,29 +14,59 @@
 #include "ocean/kelvin_wake.glsl"
 #include "ocean/trochoids.glsl"
 
-// Three vec4 per wake (ocean/src/local_features.cpp): (ship x, ship y (m), course e x, e y),
-// (k0 rad/m, a_ref N m, draft m, length m) and (half-width m: ocean::kelvin_wake_half_width,
-// beyond which the wake is exactly 0; 0, 0, 0).
+// Three vec4 per wake (ocean/src/local_features.cpp): (k0 rad/m, a_ref N m, draft m, length m),
+// (half-width m, beyond which the wake is exactly 0 (ocean::kelvin_wake_half_width); index of
+// its first track point; point count; 0) and the box (lo x, lo y, hi x, hi y; m) its track grown
+// by the half-width covers. The tracks: the ship first, then the past track's points (m).
 layout(std430, binding = 3) readonly buffer Wakes { vec4 wakes[]; };
+layout(std430, binding = 4) readonly buffer WakeTracks { vec2 wake_tracks[]; };
 uniform int wake_count;
+
+// The wake i's ship frame at the nadir-frame point p (m), ShipWake's track-following one: the
+// track's point nearest to p (the foot), b the distance along the track from the ship to it, y
+// the distance from it (> 0 to port), e the direction of travel there. False where the wake is
+// exactly 0. CPU reference: ocean::wake_frame_coordinates.
+bool LocalWakeFrame(int i, vec2 p, out float b, out float y, out vec2 e) {
+  b = 0.0;
+  y = 0.0;
+  e = vec2(0.0, 1.0);
+  const vec4 box = wakes[3 * i + 2];
+  // Away from the wake the pixels pay only this test (issue 9, point 5).
+  if (!(p.x >= box.x && p.y >= box.y && p.x <= box.z && p.y <= box.w)) return false;
+  const vec4 track = wakes[3 * i + 1];
+  const int first = int(track.y), count = int(track.z);
+  float best = 1e30, along = 0.0;
+  for (int j = 0; j + 1 < count; ++j) {
+    const vec2 newer = wake_tracks[first + j], older = wake_tracks[first + j + 1];
+    const float len = length(newer - older);
+    if (!(len > 0.0)) continue;
+    const vec2 travel = (newer - older) / len;
+    const float t = clamp(dot(p - older, travel), 0.0, len);
+    const vec2 foot = older + t * travel;
+    const float d = length(p - foot);
+    if (d < best) {
+      best = d;
+      b = along + (len - t);
+      y = dot(p - foot, vec2(-travel.y, travel.x)) < 0.0 ? -d : d;
+      e = travel;
+    }
+    along += len;
+  }
+  return best <= track.x && b > 0.0 && b < min(wakes[3 * i].w, along);
+}
 
 // The wake i's two branches at the nadir-frame point p (m), their wave vectors turned into the
 // nadir frame.
 void LocalWake(int i, vec2 p, out KelvinWakeWave transverse, out KelvinWakeWave divergent) {
-  const vec4 frame = wakes[3 * i];
-  const vec4 params = wakes[3 * i + 1];
-  const vec2 e = frame.zw;
-  const vec2 n = vec2(-e.y, e.x);  // to port
-  const vec2 d = p - frame.xy;
-  const float b = -dot(d, e), y = dot(d, n);
-  // Outside the wake's rectangle (0, length) x (-half-width, half-width) it is exactly 0: the
-  // pixels away from a wake pay only this test (issue 9, point 5).
-  if (!(b > 0.0 && b < params.w && abs(y) < wakes[3 * i + 2].x)) {
+  float b, y;
+  vec2 e;
+  if (!LocalWakeFrame(i, p, b, y, e)) {
     transverse = KelvinEmptyWave();
     divergent = KelvinEmptyWave();
     return;
   }
-  KelvinWake(params, b, y, transverse, divergent);
+  KelvinWake(wakes[3 * i], b, y, transverse, divergent);
+  const vec2 n = vec2(-e.y, e.x);  // to port
   transverse.wave_vector = transverse.wave_vector.x * e + transverse.wave_vector.y * n;
   divergent.wave_vector = divergent.wave_vector.x * e + divergent.wave_vector.y * n;
 }

@@ -24,6 +24,7 @@
 #include "test_support.hpp"
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/kelvin_wake.hpp"
 #include "thalassa/ocean/local_features.hpp"
 #include "thalassa/planet/camera_frame.hpp"
@@ -56,7 +57,8 @@ class LocalWavesTest : public ::testing::Test {
 
   // KelvinWake at each (b, y) (width x height texels), OUTPUT 1 or 2; rows bottom first.
   std::vector<glm::vec4> evaluate(int output, const std::vector<glm::vec4>& inputs, int width,
-                                  int height, const glm::dvec4& params) {
+                                  int height, const glm::dvec4& params,
+                                  const ocean::LocalFeatureBuffers* features = nullptr) {
     gl::Texture input = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(input.get(), 1, GL_RGBA32F, width, height);
     glTextureSubImage2D(input.get(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, inputs.data());
@@ -66,6 +68,10 @@ class LocalWavesTest : public ::testing::Test {
                                               .defines = {{"OUTPUT", std::to_string(output)}}});
     glProgramUniform4f(program, glGetUniformLocation(program, "params"), float(params.x),
                        float(params.y), float(params.z), float(params.w));
+    if (features) {
+      features->set_uniforms(program);
+      features->bind();
+    }
     target.begin();
     glDisable(GL_DEPTH_TEST);
     glUseProgram(program);
@@ -145,6 +151,49 @@ TEST_F(LocalWavesTest, KelvinWakeMatchesTheDoubleReference) {
     EXPECT_LE(worst_vector, 2e-6);
     EXPECT_LE(worst_height, 1e-4);
   }
+}
+
+// The shader's search for a wake's ship frame along its track (LocalWakeFrame) against its
+// double reference ocean::wake_frame_coordinates: a track with two turns, 96 x 64 points over
+// 5 km x 3.4 km around it. Both agree on presence away from the wake's edges and on (b, y) to
+// float's resolution of km-sized numbers.
+TEST_F(LocalWavesTest, WakeFrameAlongATrackMatchesTheDoubleReference) {
+  constexpr int kWidth = 96, kHeight = 64;
+  ocean::LocalFeatures features;
+  ocean::WakeInFrame wake;
+  wake.params = {.speed = 8.0, .amplitude = 0.5, .draft = 2.0, .length = 4000.0};
+  wake.track = {{300.0, 900.0}, {0.0, 0.0}, {-600.0, -700.0}, {-600.0, -2500.0}};
+  features.wakes = {wake};
+  const ocean::LocalFeatureBuffers buffers(features);
+  std::vector<glm::vec4> inputs;
+  for (int j = 0; j < kHeight; ++j)
+    for (int i = 0; i < kWidth; ++i)
+      inputs.emplace_back(float(-2500.0 + 5000.0 * (i + 0.5) / kWidth),
+                          float(-2500.0 + 3400.0 * (j + 0.5) / kHeight), 0.0f, 0.0f);
+  const std::vector<glm::vec4> out =
+      evaluate(3, inputs, kWidth, kHeight, glm::dvec4(0.0), &buffers);
+  double worst_b = 0.0, worst_y = 0.0;
+  int present = 0, disagree = 0;
+  for (std::size_t n = 0; n < inputs.size(); ++n) {
+    const ocean::WakeFrameCoordinates c =
+        ocean::wake_frame_coordinates(wake, glm::dvec2(inputs[n].x, inputs[n].y));
+    if ((out[n].x > 0.5f) != c.present) {
+      ++disagree;
+      continue;
+    }
+    if (!c.present) continue;
+    ++present;
+    worst_b = std::max(worst_b, std::abs(out[n].y - c.behind));
+    worst_y = std::max(worst_y, std::abs(out[n].z - c.lateral));
+  }
+  std::printf(
+      "LocalWakeFrame float vs double: %d points in the wake, %d disagree on presence, "
+      "|b| %.2g m, |y| %.2g m\n",
+      present, disagree, worst_b, worst_y);
+  EXPECT_GT(present, kWidth * kHeight / 4);
+  EXPECT_LE(disagree, 2);
+  EXPECT_LE(worst_b, 1e-3);
+  EXPECT_LE(worst_y, 1e-3);
 }
 
 double Luminance(const float* p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }

@@ -31,16 +31,29 @@ struct CalmScaleChart {
   int areas = 0;             // calm areas sampled (after culling)
 };
 
-// A wake in the frame: the ship frame of ocean/kelvin_wake.hpp (origin the ship, e the course,
-// n = e turned 90 degrees counterclockwise) laid in the nadir frame's plane. The ship is where
-// ShipWake::ship_at puts it at the scene's time and the wake is straight along its current
-// heading (docs/wakes.md: a track's turns behind the ship are not followed on the GPU).
+// A wake in the frame: its past track (ShipWake::past_track: the ship, then the track's points
+// it passed, out to the wake's length) laid in the nadir frame's plane as a polyline, its
+// geodesics cut into pieces short enough to be straight there. At a point p the wake's ship
+// frame (ocean/kelvin_wake.hpp) is ShipWake's track-following one: the foot is the polyline's
+// point nearest to p, b the distance along the polyline from the ship to it, y the distance
+// from it (> 0 to port), e the direction of travel of its piece (wake_frame_coordinates).
 struct WakeInFrame {
   std::string name;
-  glm::dvec2 ship{0.0};         // m, nadir frame
-  glm::dvec2 course{0.0, 1.0};  // unit, nadir frame: e
-  KelvinWakeParams params;
+  std::vector<glm::dvec2> track;  // m, nadir frame; track[0] is the ship; >= 2 points
+  KelvinWakeParams params;        // the speed is the ship's current one
 };
+
+// The wake's ship-frame coordinates at the frame point p (m), as the shaders compute them
+// (shaders/ocean/local_waves.glsl, LocalWakeFrame), in double: the CPU reference of the GPU's
+// foot search. `present` is false beyond the wake (farther than its half-width from the track,
+// b outside (0, length), or past the polyline's last point: the track's start).
+struct WakeFrameCoordinates {
+  bool present = false;
+  double behind = 0.0;          // b, m
+  double lateral = 0.0;         // y, m, > 0 to port
+  glm::dvec2 course{0.0, 1.0};  // e at the foot, unit, nadir frame
+};
+WakeFrameCoordinates wake_frame_coordinates(const WakeInFrame& wake, glm::dvec2 p);
 
 struct LocalFeatures {
   std::optional<CalmScaleChart> calm;  // none when no calm area is in view

@@ -14,10 +14,11 @@
 namespace thalassa::ocean {
 
 // Texture unit of the calm-area chart (shaders/ocean/calm_area.glsl's binding) and storage
-// buffer binding of the wakes (local_waves.glsl's), clear of the sky provider's units (4 to 11)
-// and the ocean's buffers (1, 2).
+// buffer bindings of the wakes and their tracks (local_waves.glsl's), clear of the sky provider's
+// units (4 to 11) and the ocean's buffers (1, 2).
 inline constexpr unsigned kCalmScaleUnit = 12;
 inline constexpr unsigned kWakeBufferBinding = 3;
+inline constexpr unsigned kWakeTrackBufferBinding = 4;
 
 class LocalFeatureBuffers {
  public:
@@ -38,6 +39,7 @@ class LocalFeatureBuffers {
  private:
   gl::Texture calm_texture_;
   gl::Buffer wake_buffer_;
+  gl::Buffer track_buffer_;
   int calm_areas_ = 0;
   int calm_width_ = 0, calm_height_ = 0;
   glm::dvec2 calm_origin_{0.0};
