@@ -28,12 +28,14 @@ constexpr double kChartDistanceTolerance = 0.01;
 // Samples of s = 1 kept around the areas' projected extent, so the chart's border is outside.
 constexpr int kChartBorderSamples = 2;
 
-// The past track's geodesics are laid in the frame's plane as pieces of at most this length (m)
-// (a geodesic piece of length l at distance r from the nadir bows away from its chord there by
-// about r l^2 / (8 R^2): below 0.1 mm for l = 250 m, r = 100 km), and at most kMaxTrackPieces
-// of them over the wake's length.
-constexpr double kTrackPieceLength = 250.0;
-constexpr double kMaxTrackPieces = 96.0;
+// The past track's geodesics are laid in the frame's plane as straight pieces. A geodesic whose
+// nearest point is r from the nadir projects (orthographically) to a curve of curvature about
+// r / R^2, so a piece of length l bows from its chord by r l^2 / (8 R^2): pieces are cut to keep
+// that below kTrackBow (a 6 km wake 10 km away needs one piece, from 1000 km 1.8 km pieces), at
+// most kMaxTrackPieces per geodesic (fewer than that from the farthest views only, where the
+// wake is a few pixels).
+constexpr double kTrackBow = 0.01;  // m
+constexpr int kMaxTrackPieces = 64;
 
 // Rays sampled along each side of the image for its footprint on the sea.
 constexpr int kFootprintRaysPerSide = 16;
@@ -243,21 +245,25 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
                      .amplitude = settings.amplitude,
                      .draft = settings.draft,
                      .length = settings.length};
-    // The past track in the frame's plane, each geodesic cut into pieces of at most
-    // kTrackPieceLength (or of length / kMaxTrackPieces for long wakes).
+    // The past track in the frame's plane, each geodesic cut into pieces (kTrackBow).
     const std::vector<GeoPoint> past = wake.past_track(scene.time);
-    const double piece = std::max(kTrackPieceLength, settings.length / kMaxTrackPieces);
+    const double radius = planet.equatorial_radius();
     placed.track.push_back(glm::dvec2(local.offset(past[0].lat, past[0].lon, 0.0)));
     for (std::size_t k = 0; k + 1 < past.size(); ++k) {
       double length, azi1, azi2;
       geodesic.Inverse(past[k].lat, past[k].lon, past[k + 1].lat, past[k + 1].lon, length, azi1,
                        azi2);
-      const int pieces = std::max(1, int(std::ceil(length / piece)));
-      for (int m = 1; m <= pieces; ++m) {
+      const glm::dvec2 a = placed.track.back();
+      const glm::dvec2 b(local.offset(past[k + 1].lat, past[k + 1].lon, 0.0));
+      const double r = std::max({glm::length(a), glm::length(b), 1.0});
+      const double piece = std::sqrt(8.0 * radius * radius * kTrackBow / r);
+      const int pieces = std::clamp(int(std::ceil(length / piece)), 1, kMaxTrackPieces);
+      for (int m = 1; m < pieces; ++m) {
         double lat, lon;
         geodesic.Direct(past[k].lat, past[k].lon, azi1, length * m / pieces, lat, lon);
         placed.track.push_back(glm::dvec2(local.offset(lat, lon, 0.0)));
       }
+      placed.track.push_back(b);
     }
     if (placed.track.size() < 2) continue;
     // On screen: the track's box grown by the half-width against the image's footprint.
