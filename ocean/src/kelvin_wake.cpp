@@ -104,6 +104,8 @@ WakeWave empty_wave(double angle) {
 
 }  // namespace
 
+double kelvin_reference_normalisation() { return reference_normalisation(); }
+
 double WakeWave::slope_variance(double weight) const {
   const double x = std::min(wavenumber * weight * amplitude, 1.0);
   const double x2 = x * x;

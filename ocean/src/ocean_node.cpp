@@ -8,6 +8,7 @@
 
 #include "ross_brdf_reference.hpp"
 #include "thalassa/atmosphere/gl/sky_shrm.hpp"
+#include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
@@ -54,6 +55,8 @@ class OceanNode final : public gl::Node {
     // The glossy sky maps and the SH irradiance exist only when the scene asks for them.
     if (options_.sky_shrm && (options_.sky || options_.sea))
       glossy_sky_ = std::make_unique<atmosphere::GlossySkyMaps>();
+    if (options_.features && !options_.features->empty())
+      local_features_ = std::make_unique<LocalFeatureBuffers>(*options_.features);
   }
 
   std::string name() const override { return "ocean"; }
@@ -71,6 +74,8 @@ class OceanNode final : public gl::Node {
       for (const std::string& item : glossy_sky_->built()) list.push_back(item);
     if (options_.sea) list.push_back("ocean.refracted_light");
     if (options_.air) list.push_back("ocean.aerial_perspective");
+    if (local_features_)
+      for (const std::string& item : local_features_->built()) list.push_back(item);
     return list;
   }
 
@@ -163,7 +168,7 @@ class OceanNode final : public gl::Node {
     }
 
     // Pass 1, positions + normals + variances (sec. 7.3's first part), into the G-buffer.
-    const gl::Defines geometry_defines = method_defines();
+    const gl::Defines geometry_defines = geometry_pass_defines();
     const GLuint geometry = context.shaders.program({.vertex = "ocean/ocean.vert",
                                                      .fragment = "ocean/ocean_geometry.frag",
                                                      .defines = geometry_defines});
@@ -179,6 +184,10 @@ class OceanNode final : public gl::Node {
     set_reference_sun_uniforms(geometry);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, tail_buffer_.get());
+    if (local_features_) {
+      local_features_->set_uniforms(geometry);
+      local_features_->bind();
+    }
     ensure_gbuffer(context.target);
     glBindFramebuffer(GL_FRAMEBUFFER, gbuffer_.get());
     const GLfloat zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
@@ -294,6 +303,13 @@ class OceanNode final : public gl::Node {
                        float(options_.settings.fresnel_r));
   }
 
+  // The first pass's defines: the method's, and the wakes' and calm areas' (issue 9).
+  gl::Defines geometry_pass_defines() const {
+    gl::Defines defines = method_defines();
+    if (local_features_) local_features_->add_defines(defines);
+    return defines;
+  }
+
   // The grid's cell (pixels): the scene's, or for the reference kReferenceGridCell.
   double grid_cell() const {
     return options_.method == OceanMethod::reference ? kReferenceGridCell
@@ -340,7 +356,7 @@ class OceanNode final : public gl::Node {
   // depth is still the cleared far plane, so it costs only what the holes cover (and an early
   // discard on the sky).
   void draw_backstop(gl::ShaderLibrary& shaders, const glm::dvec2& downwind, float scale) {
-    gl::Defines defines = method_defines();
+    gl::Defines defines = geometry_pass_defines();
     defines["BACKSTOP"] = "1";
     const GLuint program = shaders.program({.vertex = "engine/fullscreen.vert",
                                             .fragment = "ocean/ocean_geometry.frag",
@@ -357,6 +373,7 @@ class OceanNode final : public gl::Node {
     set_reference_sun_uniforms(program);
     glProgramUniform2f(program, glGetUniformLocation(program, "constant_variance"),
                        float(constant_variance_.x), float(constant_variance_.y));
+    if (local_features_) local_features_->set_uniforms(program);
     glUseProgram(program);
     glDepthMask(GL_FALSE);
     glDepthFunc(GL_EQUAL);
@@ -398,6 +415,7 @@ class OceanNode final : public gl::Node {
   OceanNodeOptions options_;
   std::shared_ptr<atmosphere::SkyProvider> provider_;
   std::unique_ptr<atmosphere::GlossySkyMaps> glossy_sky_;  // only with sky_shrm
+  std::unique_ptr<LocalFeatureBuffers> local_features_;    // only with wakes or calm areas
   WaveSet waves_;
   gl::Buffer wave_buffer_;
   gl::Buffer tail_buffer_;

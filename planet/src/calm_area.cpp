@@ -47,17 +47,28 @@ bool inside_ring(const PlanarRing& r, double px, double py) {
 
 }  // namespace
 
+// An edge's geodesic midpoint (ECEF, m) and half its length (m): for a point P and any point Q
+// of the edge, geodesic(P, Q) >= |P - Q| >= |P - M| - |M - Q| >= |P - M| - half, a lower bound
+// of P's distance to the edge that lets signed_distance skip the edges that cannot be nearest.
+struct EdgeBound {
+  std::size_t ring = 0, index = 0;  // the edge from rings[ring][index] to the next vertex
+  glm::dvec3 middle{0.0};
+  double half = 0.0;
+};
+
 struct CalmArea::Impl {
   GeographicLib::Geodesic geodesic;
   GeographicLib::Gnomonic gnomonic;
+  Planet planet;
   std::vector<std::vector<GeoPoint>> rings;  // exterior first
   std::vector<PlanarRing> planar;
-  Impl(double a, double f) : geodesic(a, f), gnomonic(geodesic) {}
+  std::vector<EdgeBound> edges;
+  Impl(const Planet& p)
+      : geodesic(p.equatorial_radius(), p.flattening()), gnomonic(geodesic), planet(p) {}
 };
 
 CalmArea::CalmArea(const Planet& planet, const CalmAreaSettings& settings)
-    : impl_(std::make_unique<Impl>(planet.equatorial_radius(), planet.flattening())),
-      settings_(settings) {
+    : impl_(std::make_unique<Impl>(planet)), settings_(settings) {
   const std::string& name = settings.name;
   if (!std::isfinite(settings.scale) || settings.scale < 0.0 || settings.scale > 1.0)
     fail(name, "scale: expected a number in [0, 1]");
@@ -114,6 +125,17 @@ CalmArea::CalmArea(const Planet& planet, const CalmAreaSettings& settings)
       detail::segment_extent(impl_->geodesic, a.lat, a.lon, b.lat, b.lon, south, north, arcs);
     }
   }
+  for (std::size_t r = 0; r < impl_->rings.size(); ++r) {
+    const auto& ring = impl_->rings[r];
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const GeoPoint& a = ring[i];
+      const GeoPoint& b = ring[(i + 1) % ring.size()];
+      double s12, azi1, azi2, lat, lon;
+      impl_->geodesic.Inverse(a.lat, a.lon, b.lat, b.lon, s12, azi1, azi2);
+      impl_->geodesic.Direct(a.lat, a.lon, azi1, 0.5 * s12, lat, lon);
+      impl_->edges.push_back({r, i, planet.ecef(lat, lon, 0.0), 0.5 * s12});
+    }
+  }
   bounds_ = GeoBounds::from_arcs(south, north, arcs);
   if (contains(90.0, 0.0)) bounds_ = {south, 90.0, -180.0, 180.0};
   if (contains(-90.0, 0.0)) bounds_ = {-90.0, bounds_.north, -180.0, 180.0};
@@ -146,15 +168,24 @@ bool CalmArea::contains(double lat, double lon) const {
 
 double CalmArea::signed_distance(double lat, double lon) const {
   if (!std::isfinite(lat) || !std::isfinite(lon)) return -std::numeric_limits<double>::infinity();
+  // The edges in the order of their lower bounds (EdgeBound); the search stops at the first
+  // edge whose bound is not below the best distance found: the result is the exact minimum.
+  const glm::dvec3 p = impl_->planet.ecef(lat, lon, 0.0);
+  std::vector<std::pair<double, const EdgeBound*>> order;
+  order.reserve(impl_->edges.size());
+  for (const EdgeBound& e : impl_->edges)
+    order.emplace_back(glm::length(p - e.middle) - e.half, &e);
+  std::sort(order.begin(), order.end(),
+            [](const auto& x, const auto& y) { return x.first < y.first; });
   double best = std::numeric_limits<double>::infinity();
-  for (const auto& ring : impl_->rings) {
-    for (std::size_t i = 0; i < ring.size(); ++i) {
-      const GeoPoint& a = ring[i];
-      const GeoPoint& b = ring[(i + 1) % ring.size()];
-      const detail::SegmentFoot foot =
-          detail::nearest_on_segment(impl_->geodesic, a.lat, a.lon, b.lat, b.lon, lat, lon);
-      best = std::min(best, foot.distance);
-    }
+  for (const auto& [bound, e] : order) {
+    if (bound >= best) break;
+    const auto& ring = impl_->rings[e->ring];
+    const GeoPoint& a = ring[e->index];
+    const GeoPoint& b = ring[(e->index + 1) % ring.size()];
+    const detail::SegmentFoot foot =
+        detail::nearest_on_segment(impl_->geodesic, a.lat, a.lon, b.lat, b.lon, lat, lon);
+    best = std::min(best, foot.distance);
   }
   return contains(lat, lon) ? best : -best;
 }

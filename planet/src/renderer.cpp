@@ -20,6 +20,7 @@
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/sea_surface.hpp"
 #include "thalassa/planet/camera_frame.hpp"
+#include "thalassa/planet/local_features.hpp"
 #include "thalassa/planet/nadir_frame.hpp"
 
 namespace thalassa {
@@ -101,7 +102,8 @@ struct Renderer::Impl {
   gl::VertexArray present_vao;
   gl::GpuTimer timer;
   std::shared_ptr<atmosphere::SkyProvider> provider;
-  double provider_ms = 0.0;  // creating the provider: tables computed or loaded, uploaded
+  double provider_ms = 0.0;   // creating the provider: tables computed or loaded, uploaded
+  double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
@@ -140,13 +142,24 @@ struct Renderer::Impl {
     const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
     if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
     const bool space = scene.camera.height >= kSpaceModeHeight;
+    // Wakes and calm areas in view (issue 9), placed in the nadir frame; none for most scenes.
+    std::shared_ptr<const ocean::LocalFeatures> features;
+    if (sea_visible && (!scene.wakes.empty() || !scene.calm_areas.empty())) {
+      const auto start = std::chrono::steady_clock::now();
+      features = std::make_shared<const ocean::LocalFeatures>(
+          place_local_features(Planet(scene.planet), scene, nadir));
+      features_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+              .count();
+    }
     if (sea_visible && space)
       graph.add(make_space_ocean_node({.settings = scene.ocean,
                                        .sun_glint = sun_up && options.terms.sun,
                                        .sky = options.terms.sky,
                                        .sea = options.terms.sea,
                                        .air = options.terms.air,
-                                       .provider = provider}));
+                                       .provider = provider,
+                                       .features = features}));
     if (space && options.method != ocean::OceanMethod::full)
       throw SceneError("--method " + std::string(ocean::method_name(options.method)) +
                        ": expected a camera below " + std::to_string(int(kSpaceModeHeight)) +
@@ -171,7 +184,8 @@ struct Renderer::Impl {
                                   .sky_shrm = scene.ocean.sky_filter == "shrm",
                                   .provider = provider,
                                   .method = options.method,
-                                  .reference_sun_cells = options.reference.sun_cells}));
+                                  .reference_sun_cells = options.reference.sun_cells,
+                                  .features = features}));
   }
 
   // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
@@ -365,6 +379,7 @@ RenderStats Renderer::stats() const {
   stats.sample_row_change = m.sample_row_change;
   stats.resolved_rows = m.resolved_rows;
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
+  if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
   if (m.provider->sky_map_ms() > 0.0)
     stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());

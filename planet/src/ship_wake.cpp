@@ -196,6 +196,16 @@ std::optional<ShipWake::Coordinates> ShipWake::coordinates(double lat, double lo
   return c;
 }
 
+std::vector<GeoPoint> ShipWake::past_track(double time) const {
+  const State st = ship_at(time);
+  if (!st.present) return {};
+  std::vector<PolyPoint> poly;
+  impl_->past(settings_, st, time, params_.length, poly);
+  std::vector<GeoPoint> out;
+  for (const PolyPoint& p : poly) out.push_back({p.lat, p.lon});
+  return out;
+}
+
 ocean::KelvinWakeSample ShipWake::sample(double lat, double lon, double time) const {
   const std::optional<Coordinates> c = coordinates(lat, lon, time);
   ocean::KelvinWakeParams p = params_;

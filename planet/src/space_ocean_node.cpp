@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
 namespace thalassa {
@@ -13,7 +14,10 @@ constexpr double kPi = 3.14159265358979323846;
 class SpaceOceanNode final : public gl::Node {
  public:
   explicit SpaceOceanNode(const SpaceOceanNodeOptions& options)
-      : options_(options), waves_(ocean::make_wave_set(options.settings)) {}
+      : options_(options), waves_(ocean::make_wave_set(options.settings)) {
+    if (options_.features && !options_.features->empty())
+      local_features_ = std::make_unique<ocean::LocalFeatureBuffers>(*options_.features);
+  }
 
   std::string name() const override { return "ocean"; }
   std::vector<std::string> built() const override {
@@ -22,6 +26,8 @@ class SpaceOceanNode final : public gl::Node {
     if (options_.sky) list.push_back("ocean.sky_reflection.sky_map_array");
     if (options_.sea) list.push_back("ocean.refracted_light");
     if (options_.air) list.push_back("ocean.aerial_perspective");
+    if (local_features_)
+      for (const std::string& item : local_features_->built()) list.push_back(item);
     return list;
   }
 
@@ -36,6 +42,7 @@ class SpaceOceanNode final : public gl::Node {
       defines["SKY_MAP_ARRAY"] = "1";
       provider.sky_map_array(context.shaders, &context.timer);
     }
+    if (local_features_) local_features_->add_defines(defines);
     const GLuint program = context.shaders.program({.vertex = "engine/fullscreen.vert",
                                                     .fragment = "planet/ocean_space.frag",
                                                     .defines = defines});
@@ -62,6 +69,10 @@ class SpaceOceanNode final : public gl::Node {
                          float(sky.y), float(sky.z));
     }
     provider.bind();
+    if (local_features_) {
+      local_features_->set_uniforms(program);
+      local_features_->bind();
+    }
     glUseProgram(program);
     // Depth written per pixel (gl_FragDepth), so later features can be tested against the sea.
     glDepthFunc(GL_ALWAYS);
@@ -73,6 +84,7 @@ class SpaceOceanNode final : public gl::Node {
  private:
   SpaceOceanNodeOptions options_;
   ocean::WaveSet waves_;
+  std::unique_ptr<ocean::LocalFeatureBuffers> local_features_;  // only with wakes or calm areas
 };
 
 }  // namespace

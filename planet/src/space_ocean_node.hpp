@@ -7,6 +7,7 @@
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/local_features.hpp"
 
 namespace thalassa {
 
@@ -17,6 +18,8 @@ struct SpaceOceanNodeOptions {
   bool sea = true;
   bool air = true;
   std::shared_ptr<atmosphere::SkyProvider> provider;
+  // The wakes and calm areas in view (issue 9): they change the slope variance only.
+  std::shared_ptr<const ocean::LocalFeatures> features;
 };
 
 std::unique_ptr<gl::Node> make_space_ocean_node(const SpaceOceanNodeOptions& options);

@@ -7,6 +7,12 @@
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
+#ifdef CALM_AREAS
+#include "ocean/calm_area.glsl"
+#endif
+#ifdef KELVIN_WAKES
+#include "ocean/local_waves.glsl"
+#endif
 
 // xyz: rest position on the sea at rest, m, nadir frame (common/frame.glsl); w: the grid cell's
 // size there, m.
@@ -41,6 +47,12 @@ void main() {
     displacement +=
         w_p * TrochoidDisplacement(direction, a.w, TrochoidArgument(a.z * direction, b.x, x.xy));
   }
+#ifdef CALM_AREAS
+  displacement *= CalmAmplitudeScale(x.xy);  // every wave's h times s (issue 9)
+#endif
+#ifdef KELVIN_WAKES
+  displacement += LocalWavesDisplacement(x.xy, cell, n_min, n_max, resolved_wave_scale);
+#endif
   const vec3 p = x + FrameSeaTangentFrame(x) * displacement;
   // Camera-relative (the camera is at height FrameCameraHeight() above the nadir).
   const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());

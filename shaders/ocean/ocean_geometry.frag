@@ -15,6 +15,12 @@
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
+#ifdef CALM_AREAS
+#include "ocean/calm_area.glsl"
+#endif
+#ifdef KELVIN_WAKES
+#include "ocean/local_waves.glsl"
+#endif
 
 #ifdef BACKSTOP
 // The depth test must reject the covered pixels before the shader runs (the discard below would
@@ -79,6 +85,11 @@ void main() {
   vec3 d_dy = vec3(0.0, 1.0, 0.0);
   vec2 partial_variance = vec2(0.0);
   int first_unresolved = wave_count;
+#ifdef CALM_AREAS
+  const float calm = CalmAmplitudeScale(x.xy);  // s of every wave's h (issue 9)
+#else
+  const float calm = 1.0;
+#endif
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
@@ -95,15 +106,19 @@ void main() {
     vec3 wave_dx, wave_dy;
     TrochoidDisplacementDerivatives(direction, a.z, a.w,
                                     TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
-    d_dx += w_n * wave_dx;
-    d_dy += w_n * wave_dy;
+    d_dx += w_n * calm * wave_dx;
+    d_dy += w_n * calm * wave_dy;
     if (w_n < 1.0) {
-      const float variance = TrochoidSlopeVariance(a.z * (1.0 - w_n) * a.w);
+      const float variance = TrochoidSlopeVariance(a.z * (1.0 - w_n) * calm * a.w);
       const float along = dot(direction, downwind);
       const float across = dot(direction, crosswind);
       partial_variance += variance * vec2(along * along, across * across);
     }
   }
+#ifdef KELVIN_WAKES
+  LocalWavesNormals(x.xy, footprint, n_min, n_max, resolved_wave_scale, downwind, d_dx, d_dy,
+                    partial_variance);
+#endif
   const vec3 v = -ray;  // toward the eye
   // The normal in the tangent frame of the sea at rest at x, turned into the nadir frame.
   const vec3 n_local = normalize(cross(d_dx, d_dy));
@@ -138,6 +153,7 @@ void main() {
 #elif defined(METHOD_BASIC)
   variance_out = vec4(constant_variance, 0.0, 0.0);
 #else
-  variance_out = vec4(tails[first_unresolved] + partial_variance + pixel_variance, 0.0, 0.0);
+  variance_out =
+      vec4(calm * calm * tails[first_unresolved] + partial_variance + pixel_variance, 0.0, 0.0);
 #endif
 }

@@ -44,10 +44,16 @@ uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighti
 
 // Slope (dimensionless, nadir-frame east and north of the local tangent plane: n = (s, 1)
 // normalised, as ocean_geometry.frag's `slope`) and visible area weight N.v (per unit rest area)
-// of the surface with every wave, at rest position x (m, nadir frame).
+// of the surface with every wave (calm areas and wakes included), at rest position x (m, nadir
+// frame).
 vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
   vec3 d_dx = vec3(1.0, 0.0, 0.0);
   vec3 d_dy = vec3(0.0, 1.0, 0.0);
+#ifdef CALM_AREAS
+  const float calm = CalmAmplitudeScale(x.xy);  // issue 9: every wave's h scaled by s
+#else
+  const float calm = 1.0;
+#endif
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
@@ -55,9 +61,14 @@ vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
     vec3 wave_dx, wave_dy;
     TrochoidDisplacementDerivatives(direction, a.z, a.w,
                                     TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
-    d_dx += wave_dx;
-    d_dy += wave_dy;
+    d_dx += calm * wave_dx;
+    d_dy += calm * wave_dy;
   }
+#ifdef KELVIN_WAKES
+  // The wakes' waves, every one resolved (a vanishing footprint gives w_n = 1, w_r = 0).
+  vec2 no_variance = vec2(0.0);
+  LocalWavesNormals(x.xy, 1e-6, n_min, n_max, 1.0, vec2(1.0, 0.0), d_dx, d_dy, no_variance);
+#endif
   const vec3 n_local = cross(d_dx, d_dy);  // unnormalised: |n_local| is the displaced area ratio
   const float weight = max(dot(FrameSeaTangentFrame(x) * n_local, v), 0.0);
   return vec3(n_local.xy / max(n_local.z, 1e-6), weight);

@@ -17,6 +17,9 @@
 #include "ocean/ross_brdf.glsl"
 #include "ocean/sky_array_reflection.glsl"
 #include "ocean/sea_point_light.glsl"
+#if defined(CALM_AREAS) || defined(KELVIN_WAKES)
+#include "planet/space_local_features.glsl"
+#endif
 
 layout(location = 0) out vec4 radiance;
 
@@ -34,6 +37,11 @@ void main() {
   if (distance < 0.0) discard;  // space or the limb: the sky pass's pixel
   const vec3 x = vec3(0.0, 0.0, FrameCameraHeight()) + distance * ray;
   const vec3 n = FrameSeaNormal(x);
+#if defined(CALM_AREAS) || defined(KELVIN_WAKES)
+  // Issue 9: this point's slope variance, hiding the uniform's (its scope starts after the
+  // initializer): the sea's times s^2 in a calm area, plus the wakes' (w_r = 1).
+  const vec2 slope_variance = SpaceLocalSlopeVariance(x.xy, slope_variance, downwind);
+#endif
   const vec3 sun = FrameSunDirection();
   const vec3 v = -ray;
 

@@ -136,4 +136,9 @@ KelvinWakeSample kelvin_wake_at(const KelvinWakeParams& params, double behind, d
 // at b = length. 0 for an empty wake.
 double kelvin_wake_half_width(const KelvinWakeParams& params);
 
+// N, the pure number that makes the transverse amplitude on the track one lambda0 astern exactly
+// a_ref (dimensionless; the same for every speed, since k0 b = 2 pi there): the shaders'
+// amplitude factor is a_ref N (shaders/ocean/kelvin_wake.glsl).
+double kelvin_reference_normalisation();
+
 }  // namespace thalassa::ocean

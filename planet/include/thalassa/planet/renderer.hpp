@@ -51,7 +51,8 @@ struct RenderStats {
   std::vector<double> resolved_rows;
   // One-off costs, wall-clock ms: "sky.provider" (creating it, the atmosphere's tables computed
   // or loaded from the cache included), "atmosphere.precompute" / "atmosphere.load",
-  // "sky.map", "sky.map_array".
+  // "sky.map", "sky.map_array", "features.place" (culling and placing the scene's wakes and calm
+  // areas, their chart sampled on the CPU: planet/local_features.hpp; only with some).
   std::vector<std::pair<std::string, double>> setup_ms;
 };
 

@@ -15,6 +15,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -70,6 +71,12 @@ class ShipWake {
   // meridians' convergence over y: below 1e-4 rad for y < 600 m at 80 degrees of latitude).
   // Empty waves where coordinates() is nullopt.
   ocean::KelvinWakeSample sample(double lat, double lon, double time) const;
+
+  // The past track at time t from the ship back to `length` astern or to the track's start
+  // (degrees; the ship first, then the track's points it passed, newest first; consecutive
+  // points joined by geodesics): the polyline coordinates() measures b along. Empty when there
+  // is no ship.
+  std::vector<GeoPoint> past_track(double time) const;
 
   // Conservative bounds of where the wake can be non-zero at time t (the past track within
   // `length` astern, grown by the wake's half-width); empty when there is no wake.

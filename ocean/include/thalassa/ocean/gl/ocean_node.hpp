@@ -12,6 +12,7 @@
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/scene_graph.hpp"
 #include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/local_features.hpp"
 #include "thalassa/ocean/method.hpp"
 
 namespace thalassa::ocean {
@@ -37,6 +38,9 @@ struct OceanNodeOptions {
   // side, [1, 64], when integrating the sun over a pixel's footprint. A pixel whose footprint
   // needs more to resolve the shortest wave is drawn with this many and marked unresolved.
   int reference_sun_cells = 64;
+  // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
+  // or empty: none, and none of their shader code is compiled.
+  std::shared_ptr<const LocalFeatures> features;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
