@@ -227,11 +227,23 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
     script += std::string(i ? ", " : "") + "'" + name +
               ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 title '" +
               curves[i].first + "'";
-  script += "\nset ylabel 'ratio to the reference'\nplot ";
-  for (std::size_t i = 0; i < curves.size(); ++i)
-    script += std::string(i ? ", " : "") + "'" + name +
-              ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 title '" +
-              curves[i].first + "'";
+  script += "\nset ylabel 'ratio to the reference'\n";
+  // No defined ratio at all (the reference's sun resolved no row, or the term is black): gnuplot
+  // refuses a plot whose every point is undefined, so the panel says so over the line of 1.
+  bool any_ratio = false;
+  for (const auto& [name_, t] : curves)
+    for (const ChannelValues& ratio : t->metrics.row_ratios) any_ratio |= std::isfinite(ratio.l);
+  if (any_ratio) {
+    script += "plot ";
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      script += std::string(i ? ", " : "") + "'" + name +
+                ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 title '" +
+                curves[i].first + "'";
+  } else {
+    script +=
+        "set label 1 'no row measured (no row resolved by the reference, or none lit)' at graph "
+        "0.5, graph 0.5 center\nplot 1 with lines dt 2 title 'ratio 1'\nunset label 1";
+  }
   script += "\nunset multiplot\n";
   return draw(gnuplot, plots, name, data, script, options);
 }
