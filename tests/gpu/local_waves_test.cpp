@@ -22,7 +22,6 @@
 #include <GeographicLib/LocalCartesian.hpp>
 
 #include "test_support.hpp"
-#include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
 #include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/kelvin_wake.hpp"
@@ -52,17 +51,12 @@ class LocalWavesTest : public ::testing::Test {
     context_ = test::make_test_context();
     library_ = std::make_unique<gl::ShaderLibrary>(
         std::vector<std::filesystem::path>{THALASSA_SOURCE_DIR "/tests/gpu/shaders"});
-    vao_ = gl::make_vertex_array();
   }
 
   // KelvinWake at each (b, y) (width x height texels), OUTPUT 1 or 2; rows bottom first.
   std::vector<glm::vec4> evaluate(int output, const std::vector<glm::vec4>& inputs, int width,
                                   int height, const glm::dvec4& params,
                                   const ocean::LocalFeatureBuffers* features = nullptr) {
-    gl::Texture input = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(input.get(), 1, GL_RGBA32F, width, height);
-    glTextureSubImage2D(input.get(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, inputs.data());
-    gl::HdrTarget target(width, height);
     const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
                                               .fragment = "kelvin_wake_eval.frag",
                                               .defines = {{"OUTPUT", std::to_string(output)}}});
@@ -72,26 +66,11 @@ class LocalWavesTest : public ::testing::Test {
       features->set_uniforms(program);
       features->bind();
     }
-    target.begin();
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(program);
-    glBindTextureUnit(0, input.get());
-    glBindVertexArray(vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    const std::vector<float> top_down = target.read_rgba_top_down();
-    std::vector<glm::vec4> out(inputs.size());
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const float* t = &top_down[(std::size_t(height - 1 - y) * width + x) * 4];
-        out[std::size_t(y) * width + x] = glm::vec4(t[0], t[1], t[2], t[3]);
-      }
-    return out;
+    return test::evaluate_fragment(program, inputs, width, height);
   }
 
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<gl::ShaderLibrary> library_;
-  gl::VertexArray vao_;
 };
 
 // The float shader against the double reference on a 96 x 64 grid: b from 0 to 1.05 length

@@ -20,7 +20,6 @@
 #include "model_reference.hpp"
 #include "ross_brdf_reference.hpp"
 #include "test_support.hpp"
-#include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
 #include "trochoids_reference.hpp"
 
@@ -57,7 +56,6 @@ class GpuNumericsTest : public ::testing::Test {
     context_ = test::make_test_context();
     library_ = std::make_unique<gl::ShaderLibrary>(
         std::vector<std::filesystem::path>{THALASSA_SOURCE_DIR "/tests/gpu/shaders"});
-    vao_ = gl::make_vertex_array();
   }
 
   static void TearDownTestSuite() {
@@ -77,34 +75,17 @@ class GpuNumericsTest : public ::testing::Test {
     const int height = int((inputs.size() + kWidth - 1) / kWidth);
     std::vector<glm::vec4> texels(std::size_t(kWidth) * height, glm::vec4(0.5f));
     std::copy(inputs.begin(), inputs.end(), texels.begin());
-    gl::Texture input = gl::make_texture(GL_TEXTURE_2D);
-    glTextureStorage2D(input.get(), 1, GL_RGBA32F, kWidth, height);
-    glTextureSubImage2D(input.get(), 0, 0, 0, kWidth, height, GL_RGBA, GL_FLOAT, texels.data());
-    gl::HdrTarget target(kWidth, height);
     const GLuint program = library_->program({.vertex = "engine/fullscreen.vert",
                                               .fragment = "numerics.frag",
                                               .defines = {{"FUNCTION", std::to_string(function)}}});
     if (uniforms) uniforms(program);
-    target.begin();
-    glDisable(GL_DEPTH_TEST);
-    glUseProgram(program);
-    glBindTextureUnit(0, input.get());
-    glBindVertexArray(vao_.get());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    const std::vector<float> top_down = target.read_rgba_top_down();
-    std::vector<glm::vec4> out(inputs.size());
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-      const std::size_t x = i % kWidth, y = i / kWidth;
-      const float* t = &top_down[((height - 1 - y) * kWidth + x) * 4];
-      out[i] = glm::vec4(t[0], t[1], t[2], t[3]);
-    }
+    std::vector<glm::vec4> out = test::evaluate_fragment(program, texels, kWidth, height);
+    out.resize(inputs.size());
     return out;
   }
 
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<gl::ShaderLibrary> library_;
-  gl::VertexArray vao_;
 };
 
 // Accumulates one row of the table: feed (gpu, expected, floor, description) per sample; every

@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "thalassa/engine/gl/hdr_target.hpp"
+#include "thalassa/engine/gl/objects.hpp"
+
 namespace thalassa::test {
 
 Backend backend_under_test() {
@@ -33,6 +36,33 @@ Scene scene_from(const std::string& json) {
   SceneBuilder builder;
   builder.load_text(json, "test scene");
   return builder.build();
+}
+
+std::vector<glm::vec4> evaluate_fragment(unsigned program, const std::vector<glm::vec4>& texels,
+                                         int width, int height) {
+  if (texels.size() != std::size_t(width) * height)
+    throw std::invalid_argument("evaluate_fragment: texels do not fill the target");
+  gl::Texture input = gl::make_texture(GL_TEXTURE_2D);
+  glTextureStorage2D(input.get(), 1, GL_RGBA32F, width, height);
+  glTextureSubImage2D(input.get(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
+  gl::HdrTarget target(width, height);
+  const gl::VertexArray vao = gl::make_vertex_array();
+  target.begin();
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(program);
+  glBindTextureUnit(0, input.get());
+  glBindVertexArray(vao.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  // The target reads top row first; texel row 0 is the bottom one.
+  const std::vector<float> top_down = target.read_rgba_top_down();
+  std::vector<glm::vec4> out(texels.size());
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float* t = &top_down[(std::size_t(height - 1 - y) * width + x) * 4];
+      out[std::size_t(y) * width + x] = glm::vec4(t[0], t[1], t[2], t[3]);
+    }
+  return out;
 }
 
 }  // namespace thalassa::test

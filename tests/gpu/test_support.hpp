@@ -5,6 +5,9 @@
 
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include "thalassa/thalassa.hpp"
 
@@ -17,5 +20,12 @@ std::unique_ptr<GlContext> make_test_context();
 std::string output_dir();
 // The scene of `json` laid over the defaults.
 Scene scene_from(const std::string& json);
+
+// Runs a full-screen fragment `program` (vertex shader engine/fullscreen.vert, its uniforms
+// already set) over a width x height float target, its input texels bound as an RGBA32F texture
+// on unit 0, and returns the target's texels in the same order as `texels` (row 0 first, as
+// texelFetch sees them). For the shader-function tests that compare GPU and CPU over a grid.
+std::vector<glm::vec4> evaluate_fragment(unsigned program, const std::vector<glm::vec4>& texels,
+                                         int width, int height);
 
 }  // namespace thalassa::test
