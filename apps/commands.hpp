@@ -58,6 +58,8 @@ struct ValidateArgs {
   std::string suite;    // empty: the default suite (data/suites/validation.json)
   std::string dir;      // the report's folder
   std::string backend;  // empty: the default headless backend
+  // --case: the names (or shell patterns, "wind10_*") of the cases to run; empty: every case.
+  std::vector<std::string> cases;
 };
 
 struct InfoArgs {

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fnmatch.h>
 #include <map>
 
 #include "commands.hpp"
@@ -214,14 +215,49 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
   validate->add_option("-o,--output", args.dir, "Folder of the report")->required();
   validate->add_option("--backend", args.backend, "egl or osmesa (default: egl, else osmesa)")
       ->check(CLI::IsMember({"egl", "osmesa"}));
+  validate->add_option("--case", args.cases,
+                       "Run only this case (a name or a shell pattern such as 'wind10_*'; may be "
+                       "given more than once; default: every case)");
 }
+
+namespace {
+
+// Keeps the cases `patterns` name (all when empty), in the suite's order. A pattern that matches
+// no case is bad input: a misspelt name would otherwise run nothing and pass.
+void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
+  if (patterns.empty()) return;
+  std::vector<SuiteCase> kept;
+  for (const SuiteCase& c : suite.cases)
+    for (const std::string& p : patterns)
+      if (fnmatch(p.c_str(), c.name.c_str(), 0) == 0) {
+        kept.push_back(c);
+        break;
+      }
+  for (const std::string& p : patterns) {
+    const bool any = std::any_of(suite.cases.begin(), suite.cases.end(), [&](const SuiteCase& c) {
+      return fnmatch(p.c_str(), c.name.c_str(), 0) == 0;
+    });
+    if (!any) {
+      std::string names;
+      for (const SuiteCase& c : suite.cases) names += (names.empty() ? "" : ", ") + c.name;
+      throw SceneError("--case: expected the name or pattern of a case of " + suite.source +
+                       " (" + names + "), got \"" + p + "\"");
+    }
+  }
+  suite.cases = std::move(kept);
+}
+
+}  // namespace
 
 int run_validate(const ValidateArgs& args) {
   // 1. The suite, the output folder and gnuplot, before any render.
   Suite suite;
+  int suite_cases = 0;  // before --case
   try {
     suite =
         args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
+    suite_cases = static_cast<int>(suite.cases.size());
+    select_cases(suite, args.cases);
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -253,6 +289,7 @@ int run_validate(const ValidateArgs& args) {
   report.renderer = query_gl_info().renderer;
   report.version = THALASSA_VERSION_STRING;
   report.horizon = suite.horizon;
+  report.suite_cases = suite_cases;
   ProgressBar bar(render_count(suite), "renders");
   CaseRunner runner(suite, *context, args.dir, bar);
   int failed = 0;

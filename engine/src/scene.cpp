@@ -797,18 +797,19 @@ void SceneBuilder::load_file(const std::string& path) {
   load_text(text, path);
 }
 
-void SceneBuilder::set(std::string_view assignment) {
-  constexpr std::string_view kSource = "--set";
+void SceneBuilder::set(std::string_view assignment) { set(assignment, "--set"); }
+
+void SceneBuilder::set(std::string_view assignment, std::string_view source) {
   const auto eq = assignment.find('=');
   if (eq == std::string_view::npos) {
-    fail(kSource, assignment, "key.path=value", "no '=' in \"" + std::string(assignment) + "\"");
+    fail(source, assignment, "key.path=value", "no '=' in \"" + std::string(assignment) + "\"");
   }
   std::string_view key = assignment.substr(0, eq);
   while (!key.empty() && key.front() == ' ') key.remove_prefix(1);
   while (!key.empty() && key.back() == ' ') key.remove_suffix(1);
   const std::string_view text = assignment.substr(eq + 1);
   if (key.empty()) {
-    fail(kSource, "", "key.path=value", "\"" + std::string(assignment) + "\" (no key)");
+    fail(source, "", "key.path=value", "\"" + std::string(assignment) + "\" (no key)");
   }
   if (is_feature_key(key)) {
     // The whole array (JSON), or a bare GeoJSON path: --set calm_areas=slicks.geojson.
@@ -816,19 +817,19 @@ void SceneBuilder::set(std::string_view assignment) {
     if (value.is_discarded()) value = std::string(text);
     json doc = json::object();
     doc[std::string(key)] = std::move(value);
-    impl_->lay(doc, kSource, true);
+    impl_->lay(doc, source, true);
     return;
   }
   if (!find_key(key) && is_section(key)) {
-    fail(kSource, key, "a key path such as " + std::string(key) + ".<name>", "a whole section");
+    fail(source, key, "a key path such as " + std::string(key) + ".<name>", "a whole section");
   }
-  if (!find_key(key)) fail_unknown(kSource, key);
+  if (!find_key(key)) fail_unknown(source, key);
   // Valid JSON (numbers, true, "quoted") is taken as such; anything else is a bare string.
   json value = json::parse(text, nullptr, false);
   if (value.is_discarded()) value = std::string(text);
   json doc = json::object();
   put_path(doc, key, std::move(value));
-  impl_->lay(doc, kSource, true);
+  impl_->lay(doc, source, true);
 }
 
 Scene SceneBuilder::build() const {

@@ -308,6 +308,32 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   EXPECT_NE(r.err.find("case fine"), std::string::npos) << r.err;
 }
 
+// --case runs a part of a suite (names or shell patterns), says so in the report, and keeps the
+// messages naming each case's place in the file. Refused cases cost no render.
+TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
+  write("part.json", R"({"suite": "part", "base": {"image.width": 16, "image.height": 8},
+    "cases": [
+      {"name": "fine", "set": {}},
+      {"name": "bad_lat", "set": {"camera.lat": 91}, "expect": 2, "error": "camera.lat"},
+      {"name": "bad_lon", "set": {"camera.lon": 181}, "expect": 2, "error": "camera.lon"}
+    ]})");
+  expect_invalid(run("validate part.json -o none --case nope"), {"--case", "nope", "bad_lat"});
+  EXPECT_FALSE(fs::exists(dir_ / "none"));
+  const Result r = run("validate part.json -o out --case 'bad_*'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(dir_ / "out" / "results.json");
+  const auto results = nlohmann::json::parse(in);
+  EXPECT_EQ(results["suite_cases"], 3);
+  ASSERT_EQ(results["cases"].size(), 2u);
+  EXPECT_EQ(results["cases"][0]["name"], "bad_lat");
+  EXPECT_EQ(results["cases"][1]["name"], "bad_lon");
+  const std::string message = results["cases"][1]["message"];
+  EXPECT_EQ(message.rfind("part.json: cases[2].set: camera.lon: expected", 0), 0u) << message;
+  std::ifstream html(dir_ / "out" / "index.html");
+  const std::string page{std::istreambuf_iterator<char>(html), std::istreambuf_iterator<char>()};
+  EXPECT_NE(page.find("2 of its 3 cases were run"), std::string::npos);
+}
+
 // ---- thalassa sky ----
 
 // The centre of texel (i, j) of an n x n sky map in u units (column 0 west, row 0 north).

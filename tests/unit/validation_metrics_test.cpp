@@ -130,6 +130,31 @@ TEST(ValidationMetrics, RowTotalsAreSumsOverTheMask) {
   EXPECT_THROW(relative_errors(image, random_image(3, 3, 1), mask), std::invalid_argument);
 }
 
+// A row the reference lights by next to nothing (the sun's term far from the glint) has no ratio:
+// the boundary is kSignificantRowFraction of the brightest row, on either side of it.
+TEST(ValidationMetrics, RowRatiosAreUndefinedBelowTheSignificantFractionOfTheBrightestRow) {
+  const double bright = 2.0;
+  const double just_above = 1.01 * kSignificantRowFraction * bright;
+  const double just_below = 0.99 * kSignificantRowFraction * bright;
+  const std::vector<ChannelValues> reference = {
+      {bright, bright, bright, bright},
+      {just_above, just_above, just_above, just_above},
+      {just_below, just_below, just_below, just_below},
+      {1e-12, 1e-12, 1e-12, 1e-12}};
+  std::vector<ChannelValues> method = reference;
+  for (ChannelValues& row : method) row = {row.l * 3.0, row.r * 3.0, row.g * 3.0, row.b * 3.0};
+  method[3] = {1e-6, 1e-6, 1e-6, 1e-6};  // float noise: a ratio of 1e6 if it counted
+  const std::vector<ChannelValues> ratios = row_ratios(method, reference);
+  ASSERT_EQ(ratios.size(), 4u);
+  EXPECT_NEAR(ratios[0].l, 3.0, 1e-12);
+  EXPECT_NEAR(ratios[1].l, 3.0, 1e-12);
+  EXPECT_NEAR(ratios[1].g, 3.0, 1e-12);
+  EXPECT_TRUE(std::isnan(ratios[2].l));
+  EXPECT_TRUE(std::isnan(ratios[2].r));
+  EXPECT_TRUE(std::isnan(ratios[3].l));
+  EXPECT_NEAR(max_row_deviation(ratios), 2.0, 1e-12);
+}
+
 TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethodIsBlackToo) {
   Image black{2, 2, std::vector<float>(16, 0.0f)};
   const PixelMask mask = PixelMask::all(2, 2);

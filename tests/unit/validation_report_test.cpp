@@ -151,7 +151,7 @@ Report synthetic_report() {
   bad.expected_exit = 2;
   bad.expected_error = "camera.lat: expected";
   bad.exit_status = 2;
-  bad.message = "--set: camera.lat: expected a number in [-90, 90] (degrees), got 90.5";
+  bad.message = "v.json: cases[1].set: camera.lat: expected a number in [-90, 90] (degrees), got 90.5";
   report.cases.push_back(bad);
   return report;
 }

@@ -185,7 +185,10 @@ TEST(ValidationSuite, CaseSceneErrorIsTheMessageOfTheRefusedScene) {
     EXPECT_EQ(case_scene_error(s, c, s.find_method("coarse")), error);
   }
   EXPECT_EQ(case_scene_error(s, s.cases[1]).value_or(""),
-            "--set: camera.lat: expected a number in [-90, 90] (degrees), got 91");
+            "s.json: cases[1].set: camera.lat: expected a number in [-90, 90] (degrees), got 91");
+  EXPECT_EQ(case_scene_error(s, s.cases[2]).value_or(""),
+            "s.json: cases[2].set: ocean.lambda_min: expected a value <= ocean.lambda_max (5 m), "
+            "got 10");
 }
 
 TEST(ValidationSuite, AMethodsSetAppliesToThatMethodOnlyAndWinsOverTheCase) {
@@ -283,7 +286,7 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
       {R"({"suite": "s", "cases": [{"name": "A", "set": {}}]})",
        "t.json: cases[0].name: expected a name of a-z, 0-9 and _, got \"A\""},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.lambda_min": 10, "ocean.lambda_max": 5}}]})",
-       "t.json: cases[0].set: expected a valid scene, got --set: ocean.lambda_min..."},
+       "t.json: cases[0].set: ocean.lambda_min: expected a value <= ocean.lambda_max (5 m), got 10"},
       {R"({"suite": "s", "cases": [{"name": "a"}]})",
        "t.json: cases[0].set: expected an object of scene keys ({} for none), got none"},
       {R"({"suite": "s", "cases": [)" + ok_case + "," + ok_case + "]}",

@@ -140,9 +140,18 @@ std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
   if (method.size() != reference.size())
     throw std::invalid_argument("row_ratios: " + std::to_string(method.size()) + " rows against " +
                                 std::to_string(reference.size()));
+  double brightest = 0.0;
+  for (const ChannelValues& r : reference)
+    if (std::isfinite(r.l)) brightest = std::max(brightest, r.l);
+  const double floor = kSignificantRowFraction * brightest;
   std::vector<ChannelValues> ratios(method.size());
   const auto ratio = [](double m, double r) { return r > 0.0 ? m / r : kNaN; };
-  for (std::size_t y = 0; y < method.size(); ++y) ratios[y] = each(ratio, method[y], reference[y]);
+  for (std::size_t y = 0; y < method.size(); ++y) {
+    if (reference[y].l > 0.0 && reference[y].l >= floor)
+      ratios[y] = each(ratio, method[y], reference[y]);
+    else
+      ratios[y] = {kNaN, kNaN, kNaN, kNaN};
+  }
   return ratios;
 }
 

@@ -234,11 +234,15 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   for (const auto& [name_, t] : curves)
     for (const ChannelValues& ratio : t->metrics.row_ratios) any_ratio |= std::isfinite(ratio.l);
   if (any_ratio) {
-    script += "plot ";
+    // On a log scale, so that half and twice the reference lie as far from 1; a method black
+    // where the reference is lit (ratio 0) or 100 times too bright is drawn at the clamp.
+    script +=
+        "set logscale y 2\nset ylabel 'ratio to the reference (log scale, clamped to "
+        "[1/64, 64])'\nclamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 "
+        "lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
-      script += std::string(i ? ", " : "") + "'" + name +
-                ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 title '" +
-                curves[i].first + "'";
+      script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(3 + 2 * i) +
+                ")) with lines lw 2 title '" + curves[i].first + "'";
   } else {
     script +=
         "set label 1 'no row measured (no row resolved by the reference, or none lit)' at graph "
@@ -486,6 +490,10 @@ std::string index_html(const Report& report,
   h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
   h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
        "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+  if (report.suite_cases > static_cast<int>(report.cases.size()))
+    h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
+         " of its " + std::to_string(report.suite_cases) +
+         " cases were run (thalassa validate --case).</p>\n";
   h += "<p>Every number: <a href=\"results.json\">results.json</a>, <a "
        "href=\"metrics.csv\">metrics.csv</a>, <a href=\"rows.csv\">rows.csv</a>, <a "
        "href=\"horizon.csv\">horizon.csv</a>, <a href=\"cases.csv\">cases.csv</a>. Definitions: "
@@ -601,6 +609,7 @@ std::string report_json(const Report& report) {
   j["backend"] = report.backend;
   j["renderer"] = report.renderer;
   j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
+  j["suite_cases"] = std::max(report.suite_cases, static_cast<int>(report.cases.size()));
   j["cases"] = ojson::array();
   for (const CaseResult& c : report.cases) {
     ojson jc;
@@ -679,6 +688,7 @@ Report report_from_json(const std::string& json_text) {
   report.renderer = j.at("renderer");
   report.horizon = {get_number(j.at("horizon").at("depth_deg")),
                     get_number(j.at("horizon").at("bin_deg"))};
+  report.suite_cases = j.value("suite_cases", 0);
   for (const ojson& jc : j.at("cases")) {
     CaseResult c;
     c.name = jc.at("name");

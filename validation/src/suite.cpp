@@ -224,19 +224,54 @@ std::vector<std::string> terms_at(const json& v, std::string_view source, const 
   return terms;
 }
 
-// The base scene file's text (if any) under `assignments`, built; a scene error becomes one
-// naming `key`.
+// An override with the part of the suite it comes from, which scene errors name in place of
+// "--set": "suite.json: cases[2].set: camera.lat: expected ...".
+struct LabelledOverride {
+  std::string assignment;
+  std::string source;
+};
+
+void append_labelled(std::vector<LabelledOverride>& out, const std::vector<SceneOverride>& set,
+                     std::string_view source, const std::string& key) {
+  for (const SceneOverride& o : set)
+    out.push_back({o.assignment(), std::string(source) + ": " + key});
+}
+
+// The base scene file's text (if any) under `overrides`, built: a SceneError names the suite
+// file and the part of it the bad value came from.
 void build_or_fail(const std::string& scene_text, const std::string& scene_file,
-                   const std::vector<std::string>& assignments, std::string_view source,
-                   const std::string& key) {
+                   const std::vector<LabelledOverride>& overrides) {
   try {
     SceneBuilder builder;
     if (!scene_file.empty()) builder.load_text(scene_text, scene_file);
-    for (const std::string& a : assignments) builder.set(a);
+    for (const LabelledOverride& o : overrides) builder.set(o.assignment, o.source);
     builder.build();
   } catch (const SceneError& e) {
-    fail(source, key, "a valid scene", e.what());
+    throw SuiteError(e.what());
   }
+}
+
+// "methods[i]": where a method is in the suite file (by its unique name).
+std::string method_key(const Suite& suite, const SuiteMethod& method) {
+  for (std::size_t i = 0; i < suite.methods.size(); ++i)
+    if (suite.methods[i].name == method.name) return "methods[" + std::to_string(i) + "]";
+  return "method " + method.name;
+}
+
+// "cases[i]": where a case is in the suite file (which `validate --case` may have filtered).
+std::string case_key(const SuiteCase& c) {
+  return c.index >= 0 ? "cases[" + std::to_string(c.index) + "]" : "case " + c.name;
+}
+
+// The overrides of case `c` rendered with `method` (null: the case's own scene), in the order
+// case_assignments gives.
+std::vector<LabelledOverride> case_overrides(const Suite& suite, const SuiteCase& c,
+                                             const SuiteMethod* method) {
+  std::vector<LabelledOverride> out;
+  append_labelled(out, suite.base, suite.source, "base");
+  append_labelled(out, c.set, suite.source, case_key(c) + ".set");
+  if (method) append_labelled(out, method->set, suite.source, method_key(suite, *method) + ".set");
+  return out;
 }
 
 }  // namespace
@@ -289,9 +324,11 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     }
   }
   if (doc.contains("base")) suite.base = overrides_at(doc["base"], source, "base", true);
-  std::vector<std::string> base_assignments;
-  for (const SceneOverride& o : suite.base) base_assignments.push_back(o.assignment());
-  build_or_fail(scene_text, suite.scene_file, base_assignments, source, "base");
+  {
+    std::vector<LabelledOverride> base;
+    append_labelled(base, suite.base, source, "base");
+    build_or_fail(scene_text, suite.scene_file, base);
+  }
 
   // Methods and variants.
   if (doc.contains("methods")) {
@@ -384,6 +421,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     SuiteCase sc;
     if (!c.contains("name")) fail(source, at + ".name", "a name of a-z, 0-9 and _", "none");
     sc.name = name_at(c["name"], source, at + ".name");
+    sc.index = static_cast<int>(i);
     for (const SuiteCase& earlier : suite.cases)
       if (earlier.name == sc.name)
         fail(source, at + ".name", "a name not used before in cases",
@@ -430,17 +468,11 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     }
     // A case expected to render: its scene, and its scene with each method's set, must build.
     if (sc.expected_exit == 0) {
-      std::vector<std::string> assignments = base_assignments;
-      for (const SceneOverride& o : sc.set) assignments.push_back(o.assignment());
-      build_or_fail(scene_text, suite.scene_file, assignments, source, at + ".set");
+      build_or_fail(scene_text, suite.scene_file, case_overrides(suite, sc, nullptr));
       for (const std::string& name : sc.methods) {
         const SuiteMethod& m = *suite.find_method(name);
-        if (m.set.empty()) continue;
-        std::vector<std::string> with_method = assignments;
-        for (const SceneOverride& o : m.set) with_method.push_back(o.assignment());
-        const std::size_t index = static_cast<std::size_t>(&m - suite.methods.data());
-        build_or_fail(scene_text, suite.scene_file, with_method, source,
-                      "methods[" + std::to_string(index) + "].set (with " + at + ")");
+        if (!m.set.empty())
+          build_or_fail(scene_text, suite.scene_file, case_overrides(suite, sc, &m));
       }
     }
     suite.cases.push_back(std::move(sc));
@@ -468,7 +500,8 @@ std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c
 SceneBuilder case_scene_builder(const Suite& suite, const SuiteCase& c, const SuiteMethod* method) {
   SceneBuilder builder;
   if (!suite.scene_file.empty()) builder.load_file(suite.scene_file);
-  for (const std::string& a : case_assignments(suite, c, method)) builder.set(a);
+  for (const LabelledOverride& o : case_overrides(suite, c, method))
+    builder.set(o.assignment, o.source);
   return builder;
 }
 

@@ -164,6 +164,9 @@ class SceneBuilder {
   // otherwise taken as a bare string (so `--set ocean.spectrum=omega-2` works unquoted).
   // Messages name the source "--set". Like load_text, a failed call changes nothing.
   void set(std::string_view assignment);
+  // The same, for an override read from another file: messages name `source` instead of
+  // "--set", e.g. "suite.json: cases[1].set: camera.lat: expected ...".
+  void set(std::string_view assignment, std::string_view source);
 
   // Checks the constraints between keys (ocean.lambda_min <= ocean.lambda_max; sun.utc not given
   // together with sun.zenith or sun.azimuth, where the built-in defaults do not count as given)

@@ -104,8 +104,15 @@ class ViewGeometry {
 // Each row's sum of the pixels inside `mask` (every pixel when null), top row first,
 // W m^-2 sr^-1 nm^-1 summed over pixels.
 std::vector<ChannelValues> row_totals(const Image& image, const PixelMask* mask = nullptr);
-// method / reference per row and channel; NaN where the reference's total is not positive
-// (a row without sea, or black in that term): the ratio is undefined there.
+// A row's ratio is defined only where the reference's row total (luminance) is at least this
+// fraction of its brightest row's. The sun's term lights rows far from the glint by next to
+// nothing (1e-12 of the brightest was seen): there a ratio of float noise to float noise reaches
+// 1e6 and would hide fig. 10's curve and decide max_row_deviation. The same fraction below which
+// the reference's convergence test ignores a row (planet/src/renderer.cpp, kNegligibleRow).
+inline constexpr double kSignificantRowFraction = 1e-3;
+// method / reference per row and channel; NaN where the ratio is undefined: where the reference's
+// luminance total is not positive (a row without sea, or black in that term) or below
+// kSignificantRowFraction of its brightest row's.
 std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
                                       const std::vector<ChannelValues>& reference);
 // The largest |ratio - 1| of the luminance over the rows where it is defined (0 when none is):

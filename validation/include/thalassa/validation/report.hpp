@@ -79,6 +79,9 @@ struct Report {
   std::string version;      // thalassa's version
   HorizonBandOptions horizon;
   std::vector<CaseResult> cases;
+  // The cases in the suite file: more than cases.size() when `thalassa validate --case` ran
+  // some of them (0: not known, taken as cases.size()).
+  int suite_cases = 0;
 };
 
 struct ReportOptions {

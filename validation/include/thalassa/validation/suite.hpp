@@ -59,6 +59,7 @@ struct SuiteMethod {
 
 struct SuiteCase {
   std::string name;  // [a-z0-9_]+, unique within the suite; names output files
+  int index = -1;    // its place in the file's "cases" array, which messages name ("cases[3]")
   std::string description;
   std::vector<SceneOverride> set;  // in file order
   int expected_exit = 0;           // 0 (renders, every pixel finite) or 2 (invalid input)
