@@ -13,7 +13,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <map>
@@ -22,6 +21,7 @@
 #include <utility>
 
 #include "scene_features.hpp"
+#include "strict_json.hpp"
 
 namespace thalassa {
 namespace {
@@ -394,13 +394,7 @@ std::string describe(const json& v) {
 
 [[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
                        std::string_view got) {
-  // An empty key is for errors about the whole input (syntax, an unreadable file).
-  std::string msg = std::string(source) + ": " + (key.empty() ? "" : std::string(key) + ": ") +
-                    "expected " + std::string(expected) + ", got " + std::string(got);
-  // One line whatever a file name or a value contains.
-  std::replace_if(
-      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  throw SceneError(msg);
+  throw SceneError(detail::input_message(source, key, expected, got));
 }
 
 std::size_t edit_distance(std::string_view a, std::string_view b) {
@@ -484,36 +478,6 @@ json checked(const KeyDesc& k, const json& v, std::string_view source,
       return v;
   }
   return v;
-}
-
-// "line:column" (1-based) of a byte offset reported by the JSON parser.
-std::string line_column(std::string_view text, std::size_t byte) {
-  // nlohmann counts the bytes read including the offending one.
-  const std::size_t pos = std::min(byte > 0 ? byte - 1 : 0, text.size());
-  std::size_t line = 1;
-  std::size_t line_start = 0;
-  for (std::size_t i = 0; i < pos; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      line_start = i + 1;
-    }
-  }
-  return std::to_string(line) + ":" + std::to_string(pos - line_start + 1);
-}
-
-// The parser's reason without its "[json.exception...] " and "parse error at line 1, column 2: "
-// (the position is given in front of the message instead).
-std::string parse_reason(const json::exception& e) {
-  std::string what = e.what();
-  if (what.rfind("[json.exception.", 0) == 0) {
-    const auto end = what.find("] ");
-    if (end != std::string::npos) what.erase(0, end + 2);
-  }
-  if (what.rfind("parse error", 0) == 0) {
-    const auto colon = what.find(": ");
-    if (colon != std::string::npos) what.erase(0, colon + 2);
-  }
-  return what;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -739,61 +703,12 @@ void SceneBuilder::load_text(std::string_view json_text, std::string_view source
 
 void SceneBuilder::load_text(std::string_view json_text, std::string_view source,
                              std::string_view key_prefix) {
-  json doc;
-  // JSON allows an object to repeat a key and nlohmann keeps the last; a scene must not (one
-  // key, one value), so repeats are caught while parsing. `path` holds the keys of the objects
-  // being parsed; `seen` the keys already met in each.
-  std::vector<std::string> path;
-  std::vector<std::vector<std::string>> seen;
-  const json::parser_callback_t no_repeated_keys = [&](int /*depth*/, json::parse_event_t event,
-                                                       json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        seen.emplace_back();
-        break;
-      case json::parse_event_t::key: {
-        const std::string key = parsed.get<std::string>();
-        auto& keys = seen.back();
-        const std::size_t depth = seen.size() - 1;
-        path.resize(depth);
-        path.push_back(key);
-        if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-          std::string dotted(key_prefix);
-          for (const auto& part : path)
-            dotted += (dotted.size() == key_prefix.size() ? "" : ".") + part;
-          fail(source, dotted, "each key once", "\"" + key + "\" a second time");
-        }
-        keys.push_back(key);
-        break;
-      }
-      case json::parse_event_t::object_end:
-        seen.pop_back();
-        break;
-      default:
-        break;
-    }
-    return true;
-  };
-  try {
-    doc = json::parse(json_text, no_repeated_keys);
-  } catch (const json::parse_error& e) {
-    fail(std::string(source) + ":" + line_column(json_text, e.byte), "", "valid JSON",
-         parse_reason(e));
-  } catch (const json::exception& e) {
-    // A number literal too large for a double ("1e999") has no position.
-    fail(source, "", "valid JSON", parse_reason(e));
-  }
+  const json doc = detail::parse_strict_json<json>(json_text, source, key_prefix, &fail);
   impl_->lay(doc, source, true, key_prefix);
 }
 
 void SceneBuilder::load_file(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) fail(path, "", "a scene file", "no such file");
-  if (std::filesystem::is_directory(path, ec)) fail(path, "", "a scene file", "a directory");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "", "a readable scene file", "a file that cannot be opened");
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (in.bad()) fail(path, "", "a readable scene file", "a read error");
+  const std::string text = detail::read_text_file(path, "scene file", "", "", &fail);
   load_text(text, path);
 }
 

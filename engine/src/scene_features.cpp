@@ -6,6 +6,7 @@
 // centre) by more than the sphere's error (< 0.5 % of a distance, < 25 km of a centre), so a
 // scene that passes here always builds there.
 #include "scene_features.hpp"
+#include "strict_json.hpp"
 
 #include <algorithm>
 #include <array>
@@ -52,13 +53,9 @@ std::string number_text(double x) {
   return buf;
 }
 
-[[noreturn]] void fail(std::string_view source, const std::string& key, const std::string& expected,
-                       const std::string& got) {
-  std::string msg = std::string(source) + ": " + (key.empty() ? "" : key + ": ") + "expected " +
-                    expected + ", got " + got;
-  std::replace_if(
-      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  throw SceneError(msg);
+[[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
+                       std::string_view got) {
+  throw SceneError(input_message(source, key, expected, got));
 }
 
 // Where messages point: the source and the key path of the current object.
@@ -340,9 +337,8 @@ json read_geojson(const std::string& path, std::string_view source, const Where&
   std::ifstream in(p, std::ios::binary);
   if (!in) at.fail("a readable GeoJSON file", "\"" + shown + "\" that cannot be opened");
   std::string content{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  json doc = json::parse(content, nullptr, false);
-  if (doc.is_discarded()) fail(shown, "", "valid JSON (GeoJSON)", "a syntax error");
-  return doc;
+  // Strict like a scene file: a syntax error at its line and column, each key once.
+  return parse_strict_json<json>(content, shown, "", &fail);
 }
 
 // The features of a GeoJSON document: a FeatureCollection's, a single Feature, or a bare

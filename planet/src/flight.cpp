@@ -5,11 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <utility>
+
+#include "strict_json.hpp"
 
 namespace thalassa {
 namespace {
@@ -52,11 +52,7 @@ std::string number_text(double x) {
 
 [[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
                        std::string_view got) {
-  std::string msg = std::string(source) + ": " + (key.empty() ? "" : std::string(key) + ": ") +
-                    "expected " + std::string(expected) + ", got " + std::string(got);
-  std::replace_if(
-      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  throw SceneError(msg);
+  throw SceneError(detail::input_message(source, key, expected, got));
 }
 
 // A finite number in [lo, hi] (lo_open: (lo, hi]), or a SceneError naming `key`.
@@ -142,64 +138,14 @@ double from_space(const Channel& c, double y) {
 // ---------------------------------------------------------------------------------------------
 // Parsing.
 
-// JSON with each object's keys given once (as scene files: nlohmann would keep the last).
+// The readers shared with scene and flight files (strict_json.hpp), refusing through fail().
 json parse_strict(std::string_view text, std::string_view source) {
-  std::vector<std::string> path;
-  std::vector<std::vector<std::string>> seen;
-  const json::parser_callback_t no_repeated_keys = [&](int, json::parse_event_t event,
-                                                       json& parsed) {
-    switch (event) {
-      case json::parse_event_t::object_start:
-        seen.emplace_back();
-        break;
-      case json::parse_event_t::key: {
-        const std::string key = parsed.get<std::string>();
-        auto& keys = seen.back();
-        path.resize(seen.size() - 1);
-        path.push_back(key);
-        if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-          std::string dotted;
-          for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
-          fail(source, dotted, "each key once", "\"" + key + "\" a second time");
-        }
-        keys.push_back(key);
-        break;
-      }
-      case json::parse_event_t::object_end:
-        seen.pop_back();
-        break;
-      default:
-        break;
-    }
-    return true;
-  };
-  try {
-    return json::parse(text, no_repeated_keys);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    if (what.rfind("[json.exception.", 0) == 0) {
-      const auto end = what.find("] ");
-      if (end != std::string::npos) what.erase(0, end + 2);
-    }
-    fail(source, "", "valid JSON", what);
-  }
+  return detail::parse_strict_json<json>(text, source, "", &fail);
 }
 
 std::string read_text_file(const std::string& path, std::string_view what, std::string_view source,
                            std::string_view key) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const std::string expected = "a readable " + std::string(what);
-  if (!fs::exists(path, ec))
-    fail(source.empty() ? path : source, key, expected,
-         (source.empty() ? "" : "\"" + path + "\", ") + std::string("no such file"));
-  if (fs::is_directory(path, ec))
-    fail(source.empty() ? path : source, key, expected,
-         (source.empty() ? "" : "\"" + path + "\", ") + std::string("a directory"));
-  std::ifstream in(path, std::ios::binary);
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.good() && !in.eof()) fail(source.empty() ? path : source, key, expected, "a read error");
-  return text;
+  return detail::read_text_file(path, what, source, key, &fail);
 }
 
 std::string known_keys(const std::vector<std::string_view>& keys) {

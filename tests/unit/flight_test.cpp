@@ -506,9 +506,9 @@ TEST(FlightErrors, NameTheFileTheKeyPathAndTheExpectation) {
       {"[1, 2]", "f.json: expected a JSON object (a flight, see docs/flight.md), got an array"},
   };
   for (const Case& c : cases) EXPECT_EQ(flight_error(c.text), c.message) << c.text;
-  // Syntax errors name the file and say what the parser found.
-  const std::string syntax = flight_error(R"({"keyframes": [)");
-  EXPECT_EQ(syntax.rfind("f.json: expected valid JSON, got ", 0), 0u) << syntax;
+  // Syntax errors name the file, the line and column, and say what the parser found.
+  const std::string syntax = flight_error("{\"keyframes\": [\n  1,,");
+  EXPECT_EQ(syntax.rfind("f.json:2:5: expected valid JSON, got ", 0), 0u) << syntax;
 }
 
 TEST(FlightErrors, FilesAndSceneFilesBesideThem) {

@@ -203,6 +203,14 @@ TEST(SceneFeatures, BadGeometryIsRefusedNamingTheFeature) {
   m = geojson_error(R"({"type": "Polygon", "coordinates": [[[0, 0], [1, 0], [1, 1], [0, 0]]]})");
   EXPECT_HAS(
       m, "features[1] (\"bad one\").geometry.type: expected \"LineString\" (a track) or \"Point\"");
+  // The file is read as strictly as a scene: a syntax error at its line and column, and a
+  // property given twice (JSON would keep the last silently).
+  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0]],})");
+  EXPECT_HAS(m, file + ":4:133:");
+  EXPECT_HAS(m, ": expected valid JSON, got ");
+  m = geojson_error(R"({"type": "LineString", "coordinates": [[0, 0], [0.001, 0]]})",
+                    R"({"name": "bad one", "times": [0, 10], "times": [0, 20]})");
+  EXPECT_HAS(m, file + ": features[1].properties.times: expected each key once");
 
   // Calm areas.
   const auto area_error = [&](const std::string& coordinates) {

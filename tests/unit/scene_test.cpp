@@ -204,7 +204,7 @@ TEST(SceneFile, MissingAndUnreadableFiles) {
   msg = error_of([&] { SceneBuilder().load_file(dir); });
   std::filesystem::remove(dir);
   EXPECT_HAS(msg, dir + ": ");
-  EXPECT_HAS(msg, "expected a scene file");
+  EXPECT_HAS(msg, "expected a readable scene file, got a directory");
 }
 
 TEST(SceneFile, FailedLoadChangesNothing) {

@@ -239,7 +239,7 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
     std::string text;
     std::string message;  // the whole message, or its start when it ends with "..."
   } bad[] = {
-      {"{", "t.json: expected valid JSON, got ..."},
+      {"{", "t.json:1:2: expected valid JSON, got ..."},
       {"[]",
        "t.json: expected a JSON object (a suite, see docs/validation.md), got an empty array"},
       {R"({"cases": [)" + ok_case + "]}",

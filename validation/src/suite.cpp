@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
+
+#include "strict_json.hpp"
 
 namespace thalassa::validation {
 namespace {
@@ -31,62 +31,17 @@ std::string describe(const json& v) {
 
 [[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
                        std::string_view got) {
-  std::string msg = std::string(source) + ": " + (key.empty() ? "" : std::string(key) + ": ") +
-                    "expected " + std::string(expected) + ", got " + std::string(got);
-  std::replace_if(
-      msg.begin(), msg.end(), [](char c) { return c == '\n' || c == '\r'; }, ' ');
-  throw SuiteError(msg);
+  throw SuiteError(detail::input_message(source, key, expected, got));
 }
 
-// JSON with each object's keys given once (nlohmann would silently keep the last).
+// The readers shared with scene and flight files (strict_json.hpp), refusing through fail().
 json parse_strict(std::string_view text, std::string_view source) {
-  std::vector<std::string> path;
-  std::vector<std::vector<std::string>> seen;
-  const json::parser_callback_t no_repeated_keys = [&](int, json::parse_event_t event,
-                                                       json& parsed) {
-    if (event == json::parse_event_t::object_start) {
-      seen.emplace_back();
-    } else if (event == json::parse_event_t::object_end) {
-      seen.pop_back();
-    } else if (event == json::parse_event_t::key) {
-      const std::string key = parsed.get<std::string>();
-      auto& keys = seen.back();
-      path.resize(seen.size() - 1);
-      path.push_back(key);
-      if (std::find(keys.begin(), keys.end(), key) != keys.end()) {
-        std::string dotted;
-        for (const auto& part : path) dotted += (dotted.empty() ? "" : ".") + part;
-        fail(source, dotted, "each key once", "\"" + key + "\" a second time");
-      }
-      keys.push_back(key);
-    }
-    return true;
-  };
-  try {
-    return json::parse(text, no_repeated_keys);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    if (what.rfind("[json.exception.", 0) == 0) {
-      const auto end = what.find("] ");
-      if (end != std::string::npos) what.erase(0, end + 2);
-    }
-    fail(source, "", "valid JSON", what);
-  }
+  return detail::parse_strict_json<json>(text, source, "", &fail);
 }
 
 std::string read_text_file(const std::string& path, std::string_view what, std::string_view source,
                            std::string_view key) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  const std::string expected = "a readable " + std::string(what);
-  const std::string where = source.empty() ? path : std::string(source);
-  const std::string named = source.empty() ? "" : "\"" + path + "\", ";
-  if (!fs::exists(path, ec)) fail(where, key, expected, named + "no such file");
-  if (fs::is_directory(path, ec)) fail(where, key, expected, named + "a directory");
-  std::ifstream in(path, std::ios::binary);
-  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-  if (!in.good() && !in.eof()) fail(where, key, expected, named + "a read error");
-  return text;
+  return detail::read_text_file(path, what, source, key, &fail);
 }
 
 std::string list_text(std::span<const std::string_view> items) {
