@@ -27,6 +27,8 @@ struct RenderArgs {
   std::string terms = "sun,sky,sea,air";  // the ocean's light terms, any subset
   std::string method = "full";            // the ocean's shading method (ocean/method.hpp)
   int samples = 1024;                     // the reference's most samples per pixel
+  int sun_cells = 256;                    // the reference's sun: most cells per pixel side
+  double sun_cells_per_wavelength = 16;   // the reference's sun: cells per shortest wavelength
 };
 
 struct SkyArgs {

@@ -65,8 +65,22 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
   render
       ->add_option("--samples", args.samples,
                    "The reference's most samples per pixel (it doubles them from 16 until each "
-                   "image row's total changes by less than 1%)")
+                   "image row's total changes by less than 1%; whole rounds of its s x s pixel "
+                   "strata)")
       ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  render
+      ->add_option("--sun-cells", args.sun_cells,
+                   "The reference's sun: the most cells per pixel side, at most 64 per side of "
+                   "each of its s x s strata (rows that need more are reported unresolved in "
+                   "--stats resolved_rows)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  render
+      ->add_option("--sun-cells-per-wavelength", args.sun_cells_per_wavelength,
+                   "The reference's sun: cells per shortest wavelength (finer is more accurate "
+                   "and costs the square)")
+      ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
 }
 
@@ -88,6 +102,8 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.max_samples = args.samples;
   renderer_options.reference.min_samples =
       std::min(renderer_options.reference.min_samples, args.samples);
+  renderer_options.reference.sun_cells = args.sun_cells;
+  renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight
           ? "--method " + args.method +

@@ -149,9 +149,10 @@ class CaseRunner {
     options.reference.max_samples = suite_.reference.pixel_samples;
     options.reference.min_samples =
         std::min(options.reference.min_samples, suite_.reference.pixel_samples);
-    // The sun's normal samples per pixel: cells of its footprint, at most 64 per side.
+    // The sun's normal samples per pixel: cells of its footprint, round(sqrt(n)) per side.
     options.reference.sun_cells =
-        std::clamp(int(std::lround(std::sqrt(double(suite_.reference.sun_normal_samples)))), 1, 64);
+        std::max(1, int(std::lround(std::sqrt(double(suite_.reference.sun_normal_samples)))));
+    options.reference.sun_cells_per_wavelength = suite_.reference.sun_cells_per_wavelength;
     const std::string problem = parse_terms(validation::terms_option(term), options.terms);
     if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
     const bool over_time = suite_.flicker.frames >= 2 &&

@@ -27,6 +27,7 @@ FrameUniforms make_frame_uniforms(const FrameInputs& inputs) {
     store(u.sea_curvature[column], inputs.sea_curvature[column], 0.0);
   u.pixel_offset[0] = static_cast<float>(inputs.pixel_offset.x);
   u.pixel_offset[1] = static_cast<float>(inputs.pixel_offset.y);
+  u.pixel_offset[2] = static_cast<float>(inputs.pixel_stratum);
   return u;
 }
 

@@ -24,12 +24,7 @@ constexpr int kGridMarginCells = 2;
 // 5 cm triangles; its normals are exact per sample here, its positions to a pixel).
 constexpr double kReferenceGridCell = 1.0;
 
-// The reference's sun integrates over cells of at most this fraction of the shortest wavelength
-// (shaders/ocean/reference_sun.glsl): the shortest wave's phase turns by at most pi / 2 across a
-// cell. Measured (docs/validation.md): halving it moves the sun's resolved 4-row bands by
-// 0.1-11 % (median 4.5 %) at 16 samples per pixel, for 2.1 times the cost.
-constexpr double kReferenceSpacingFraction = 1.0 / 4.0;
-// The most cells per pixel side shaders/ocean/reference_sun.glsl's row buffer holds.
+// The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds.
 constexpr int kReferenceMaxCells = 64;
 
 class OceanNode final : public gl::Node {
@@ -296,7 +291,8 @@ class OceanNode final : public gl::Node {
   void set_reference_sun_uniforms(GLuint program) const {
     if (!reference_sun() || waves_.waves.empty()) return;
     glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"),
-                       float(kReferenceSpacingFraction * waves_.lambda_min));
+                       float(waves_.lambda_min /
+                             std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0)));
     glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"),
                        std::clamp(options_.reference_sun_cells, 1, kReferenceMaxCells));
     glProgramUniform1f(program, glGetUniformLocation(program, "fresnel_r"),

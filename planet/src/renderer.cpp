@@ -78,6 +78,22 @@ void horizon_visibility(const gl::FrameInputs& inputs, bool& sky_visible, bool& 
   sky_visible = ocean::image_sees_sky(camera, lo, hi);
 }
 
+// s: the reference cuts each pixel into s x s strata, s^2 <= its first sample count
+// (ReferenceSampling).
+int reference_strata(const ReferenceSampling& r) {
+  const int least = std::min(r.min_samples, r.max_samples);
+  int strata = 1;
+  while ((strata + 1) * (strata + 1) <= least) ++strata;
+  return strata;
+}
+
+// The most cells of the reference's sun per side of a stratum: sun_cells per pixel side shared
+// among the s strata of a side, at most 64 (the shader's row buffer).
+int reference_stratum_cells(const ReferenceSampling& r) {
+  const int strata = reference_strata(r);
+  return std::clamp((r.sun_cells + strata - 1) / strata, 1, 64);
+}
+
 }  // namespace
 
 void check_drawable(const Scene& scene, const std::string& source) {
@@ -168,10 +184,11 @@ struct Renderer::Impl {
     if (options.method == ocean::OceanMethod::reference) {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
-            r.sun_cells >= 1 && r.sun_cells <= 64))
+            r.sun_cells >= 1 &&
+            r.sun_cells_per_wavelength >= 1.0 && r.sun_cells_per_wavelength <= 64.0))
         throw std::invalid_argument(
-            "ReferenceSampling: expected 1 <= min_samples <= max_samples, "
-            "row_tolerance > 0 and 1 <= sun_cells <= 64");
+            "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
+            "sun_cells >= 1 and sun_cells_per_wavelength in [1, 64]");
     }
     if (sea_visible && !space)
       graph.add(
@@ -184,7 +201,9 @@ struct Renderer::Impl {
                                   .sky_shrm = scene.ocean.sky_filter == "shrm",
                                   .provider = provider,
                                   .method = options.method,
-                                  .reference_sun_cells = options.reference.sun_cells,
+                                  .reference_sun_cells = reference_stratum_cells(options.reference),
+                                  .reference_cells_per_wavelength =
+                                      options.reference.sun_cells_per_wavelength,
                                   .features = features}));
   }
 
@@ -205,10 +224,16 @@ struct Renderer::Impl {
     return wall ? frame.wall_ms : frame.query_ms;
   }
 
-  // The reference: frames at Halton (2, 3) pixel offsets averaged in double, the sample count
+  // The reference: frames at stratified pixel offsets averaged in double, the sample count
   // doubled until the rows' totals settle (ReferenceSampling); the average goes back into the
   // HDR target, so that image(), present() and the host's texture all show it. Returns the
   // summed time of its frames (ms).
+  //
+  // Each pixel is cut into s x s strata, s = floor(sqrt(min_samples)) (at most max_samples):
+  // sample k stands for stratum k mod s^2, at the point of it given by the Halton (2, 3) point
+  // of round k / s^2, and the sample counts are whole rounds (multiples of s^2), so that every
+  // stratum has as many samples and the average is a box filter over the pixel. The reference's
+  // sun integrates over the sample's stratum (shaders/ocean/reference_sun.glsl).
   double draw_reference(int max_samples) {
     const int width = target.width(), height = target.height();
     std::vector<double> sum(std::size_t(width) * height * 4, 0.0);
@@ -226,11 +251,21 @@ struct Renderer::Impl {
     std::vector<double> half_totals;
     samples = 0;
     sample_row_change = 0.0;
-    for (int goal = std::min(reference.min_samples, max_samples);; goal *= 2) {
+    const int least = std::min(reference.min_samples, max_samples);
+    const int strata = reference_strata({.min_samples = least, .max_samples = least});
+    const int round = strata * strata;
+    max_samples = std::max(round, max_samples / round * round);
+    for (int goal = std::max(round, least / round * round);; goal *= 2) {
       goal = std::min(goal, max_samples);
       for (; count < goal; ++count) {
-        inputs.pixel_offset = {radical_inverse(2, count + 1) - 0.5,
-                               radical_inverse(3, count + 1) - 0.5};
+        const int q = count % round, r = count / round;
+        // In [0, 1 - 1e-3]: a point on a stratum's upper edge would be read back by the shader
+        // (float) as the next stratum's lower edge. Halton points of the few rounds used stay
+        // far below it.
+        const auto inside = [](double h) { return std::min(h, 1.0 - 1e-3); };
+        inputs.pixel_offset = {(q % strata + inside(radical_inverse(2, r + 1))) / strata - 0.5,
+                               (q / strata + inside(radical_inverse(3, r + 1))) / strata - 0.5};
+        inputs.pixel_stratum = 1.0 / strata;
         ms += draw_frame();
         const std::vector<float> rgba = target.read_rgba_top_down();
         for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rgba[i];
@@ -249,6 +284,7 @@ struct Renderer::Impl {
       half_totals = totals;
     }
     inputs.pixel_offset = glm::dvec2(0.0);
+    inputs.pixel_stratum = 1.0;
     samples = count;
     std::vector<float> average(sum.size());
     for (std::size_t i = 0; i < sum.size(); ++i) average[i] = float(sum[i] / count);

@@ -14,7 +14,8 @@ layout(std140, binding = 0) uniform Frame {
   // ellipsoid or the sphere through the nadir, exactly (ocean/sea_surface.hpp).
   mat3 frame_sea_curvature;
   // xy: where each pixel is sampled, relative to its centre (pixels; 0 but in supersampled
-  // renders); zw unused.
+  // renders); z: the side of the pixel's square stratum that the sample stands for (pixels, 1:
+  // the whole pixel; the reference's sun integrates over it); w unused.
   vec4 frame_pixel_offset;
 };
 

@@ -26,9 +26,13 @@
 // Masking of a cell by a crest inside the same pixel is not modelled: the rasterised grid
 // resolves visibility at the pixel's scale only.
 //
-// Frame pixel offsets (the Halton samples the reference averages) jitter each cell inside
-// itself, so the cells of all samples together cover the pixel uniformly (a box filter, as for
-// the other terms' samples).
+// Strata. The renderer cuts each pixel into s x s square strata and gives each frame's sample a
+// point in one of them (FrameInputs::pixel_stratum, the stratum's side, 1/s pixel): the sample
+// integrates the sun over its stratum's footprint only, so that every s^2 samples integrate
+// the whole pixel once, with cells s times finer per side than one footprint of the whole pixel
+// at the same cost. Where the sample lies inside its stratum shifts the cells by up to half a
+// cell, so that the cells of all samples together cover the pixel uniformly (a box filter, as
+// for the other terms' samples).
 
 #ifndef THALASSA_OCEAN_REFERENCE_SUN_GLSL
 #define THALASSA_OCEAN_REFERENCE_SUN_GLSL
@@ -36,8 +40,8 @@
 // m: the largest cell side on the sea at rest that counts as resolved (ocean_node.cpp:
 // kReferenceSpacingFraction x the shortest wavelength of the set).
 uniform float reference_spacing;
-// Most cells per pixel side (sqrt of the suite's sun_normal_samples); REFERENCE_MAX_CELLS is
-// the compile-time bound of the row buffer below.
+// Most cells per stratum side (ReferenceSampling::sun_cells); REFERENCE_MAX_CELLS is the
+// compile-time bound of the row buffer below.
 uniform int reference_max_cells;
 const int REFERENCE_MAX_CELLS = 64;
 uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighting.frag
@@ -74,24 +78,29 @@ vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
   return vec3(n_local.xy / max(n_local.z, 1e-6), weight);
 }
 
-// The sun reflected by the pixel whose sample point on the sea at rest is x (m, nadir frame),
-// with rest-position screen derivatives dx, dy (m per pixel), per unit L_sun Omega_sun as
-// OceanReflectedSun; v toward the eye, sun toward the sun (nadir frame), downwind unit (east,
+// The sun reflected by the pixel's stratum whose sample point on the sea at rest is x (m, nadir
+// frame), with rest-position screen derivatives dx, dy (m per pixel), per unit L_sun Omega_sun
+// as OceanReflectedSun; v toward the eye, sun toward the sun (nadir frame), downwind unit (east,
 // north). Returns (sun factor, 1 if every cell is at most reference_spacing wide else 0).
 vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 downwind) {
   const int max_cells = clamp(reference_max_cells, 1, REFERENCE_MAX_CELLS);
   const float spacing = max(reference_spacing, 1e-6);
-  const float want_x = ceil(length(dx) / spacing);
-  const float want_y = ceil(length(dy) / spacing);
+  const float stratum = clamp(frame_pixel_offset.z, 1e-3, 1.0);  // pixels
+  const float want_x = ceil(length(dx) * stratum / spacing);
+  const float want_y = ceil(length(dy) * stratum / spacing);
   const int kx = int(clamp(want_x, 1.0, float(max_cells)));
   const int ky = int(clamp(want_y, 1.0, float(max_cells)));
   const float resolved = (want_x <= float(max_cells) && want_y <= float(max_cells)) ? 1.0 : 0.0;
-  // Corner (i, j) of the cells in pixel units from the sample point x, which lies at the pixel's
-  // centre + o (FrameViewRay): the cells' corners at centre + (i / k - 0.5) + o / k.
+  // The sample point x lies at the pixel's centre + o (FrameViewRay), in the stratum whose lower
+  // corner is at centre + lo, at the fraction f of it. Corner (i, j) of the cells, in pixels
+  // from x: lo - o + (i + f - 0.5) * stratum / k, the grid shifted by f - 0.5 of a cell. With
+  // one stratum (stratum 1, lo -0.5) this is -0.5 - o + (i + o) / k.
   const vec2 o = frame_pixel_offset.xy;
+  const vec2 lo = floor((o + 0.5) / stratum) * stratum - 0.5;
+  const vec2 f = clamp((o - lo) / stratum, 0.0, 1.0);
   const vec2 k = vec2(float(kx), float(ky));
-  const vec2 corner0 = -0.5 + o / k - o;
-  const vec2 step = 1.0 / k;
+  const vec2 step = stratum / k;
+  const vec2 corner0 = lo - o + (f - 0.5) * step;
   const vec2 crosswind = vec2(-downwind.y, downwind.x);
 
   // The previous row of corners: slope (xy) and weight (z).

@@ -329,17 +329,22 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     const json& r = doc["reference"];
     if (!r.is_object())
       fail(source, "reference",
-           "an object {\"pixel_samples\", \"sun_normal_samples\", \"check_convergence\"}",
+           "an object {\"pixel_samples\", \"sun_normal_samples\", "
+           "\"sun_cells_per_wavelength\", \"check_convergence\"}",
            describe(r));
-    static constexpr std::string_view kReferenceKeys[] = {"pixel_samples", "sun_normal_samples",
-                                                          "check_convergence"};
+    static constexpr std::string_view kReferenceKeys[] = {
+        "pixel_samples", "sun_normal_samples", "sun_cells_per_wavelength", "check_convergence"};
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
       suite.reference.pixel_samples =
           integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1, 4096);
     if (r.contains("sun_normal_samples"))
       suite.reference.sun_normal_samples =
-          integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 4096);
+          integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);
+    if (r.contains("sun_cells_per_wavelength"))
+      suite.reference.sun_cells_per_wavelength =
+          number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength",
+                    1, 64, "cells", false);
     if (r.contains("check_convergence"))
       suite.reference.check_convergence =
           bool_at(r["check_convergence"], source, "reference.check_convergence");

@@ -67,22 +67,28 @@ struct LightTerms {
   bool air = true;
 };
 
-// How the reference method samples each pixel: frames drawn at pixel offsets of the Halton
-// (2, 3) sequence and averaged, doubling from min_samples until doubling changes every image
-// row's total luminance by less than row_tolerance (relative), or max_samples are reached
-// (Bruneton et al. 2010 sec. 7.2's supersampled reference; issue 6, point 1). Rows darker than
-// 1e-3 of the brightest row do not count.
+// How the reference method samples each pixel: frames drawn at stratified pixel offsets and
+// averaged, doubling from min_samples until doubling changes every image row's total luminance
+// by less than row_tolerance (relative), or max_samples are reached (Bruneton et al. 2010 sec.
+// 7.2's supersampled reference; issue 6, point 1). Rows darker than 1e-3 of the brightest row do
+// not count. The pixel is cut into s x s strata, s = floor(sqrt(min(min_samples, max_samples))),
+// each sampled once per round at the Halton (2, 3) point of the round; sample counts are whole
+// rounds (max_samples is rounded down to a multiple of s^2).
 //
 // The reflected sun is not point-sampled (its 0.27 degree disc would need millions of samples per
-// pixel): each sample integrates it over the pixel's footprint cut into cells that resolve the
-// shortest wave, at most sun_cells per pixel side ([1, 64]; shaders/ocean/reference_sun.glsl).
-// Pixels that would need more are drawn with sun_cells and reported unresolved
-// (RenderStats::resolved_rows).
+// pixel): each sample integrates it over its stratum's footprint cut into cells no wider than
+// the shortest wavelength / sun_cells_per_wavelength, at most sun_cells per pixel side (shared
+// among a side's s strata, at most 64 per stratum side; shaders/ocean/reference_sun.glsl).
+// Measured (docs/validation.md): 16 cells per wavelength move 4-row bands of the sun by at most
+// 2.2 % from 16 to 32 samples, 4 per wavelength by up to 6 %; 8 against 16 differ by up to 12 %.
+// Strata that would need more are drawn with the most and reported unresolved
+// (RenderStats::resolved_rows: the fraction of each row's resolved samples).
 struct ReferenceSampling {
   int min_samples = 16;
   int max_samples = 1024;
   double row_tolerance = 0.01;
-  int sun_cells = 64;
+  int sun_cells = 256;
+  double sun_cells_per_wavelength = 16.0;
 };
 
 struct RendererOptions {

@@ -81,10 +81,12 @@ struct FlickerSettings {
 // largest change of a row's total (it must stay below 1%).
 struct ReferenceSettings {
   int pixel_samples = 16;  // samples per pixel, [1, 4096]
-  // Normal samples per pixel for the sun's disc, [1, 4096]: the reference's sun integrates over
+  // Normal samples per pixel for the sun's disc, [1, 65536]: the reference's sun integrates over
   // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
-  // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun.glsl).
-  int sun_normal_samples = 4096;
+  // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun.glsl), each at most the shortest
+  // wavelength / sun_cells_per_wavelength ([1, 64]) wide.
+  int sun_normal_samples = 65536;
+  double sun_cells_per_wavelength = 16.0;
   bool check_convergence = false;
 };
 

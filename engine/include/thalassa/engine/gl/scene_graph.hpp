@@ -40,6 +40,11 @@ struct FrameInputs {
   // each in [-0.5, 0.5]): 0 for one sample per pixel; a supersampled render (the reference
   // method) averages frames drawn with different offsets.
   glm::dvec2 pixel_offset{0.0};
+  // The side of the square stratum of the pixel that this frame's sample stands for (pixels,
+  // (0, 1]; the offset lies in it): the reference method cuts each pixel into s x s strata and
+  // integrates its sun over the sample's stratum only (shaders/ocean/reference_sun.glsl). 1: the
+  // whole pixel.
+  double pixel_stratum = 1.0;
 };
 
 // The per-frame uniform block shared by all passes: shaders/common/frame.glsl declares the
@@ -51,7 +56,7 @@ struct FrameUniforms {
   float sun_direction[4];     // xyz; w unused
   float viewport[4];          // width, height, 1 / width, 1 / height (pixels)
   float sea_curvature[3][4];  // the columns of FrameInputs::sea_curvature (std140 mat3), 1/m
-  float pixel_offset[4];      // xy: FrameInputs::pixel_offset (pixels); zw unused
+  float pixel_offset[4];      // xy: FrameInputs::pixel_offset; z: pixel_stratum (pixels)
 };
 static_assert(sizeof(FrameUniforms) == 9 * 16, "std140 layout of shaders/common/frame.glsl");
 constexpr GLuint kFrameBinding = 0;

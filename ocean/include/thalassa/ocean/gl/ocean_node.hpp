@@ -34,10 +34,12 @@ struct OceanNodeOptions {
   // The shading method (ocean/method.hpp). The reference's node draws one sample per pixel, at
   // the frame's pixel_offset; the renderer averages many.
   OceanMethod method = OceanMethod::full;
-  // The reference's sun (shaders/ocean/reference_sun.glsl): at most this many cells per pixel
-  // side, [1, 64], when integrating the sun over a pixel's footprint. A pixel whose footprint
-  // needs more to resolve the shortest wave is drawn with this many and marked unresolved.
+  // The reference's sun (shaders/ocean/reference_sun.glsl): at most this many cells per side of
+  // a sample's pixel stratum, [1, 64], each at most the shortest wavelength /
+  // reference_cells_per_wavelength wide ([1, 64]). A stratum whose footprint needs more is drawn
+  // with this many and marked unresolved.
   int reference_sun_cells = 64;
+  double reference_cells_per_wavelength = 16.0;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
