@@ -252,7 +252,8 @@ struct Renderer::Impl {
     samples = 0;
     sample_row_change = 0.0;
     const int least = std::min(reference.min_samples, max_samples);
-    const int strata = reference_strata({.min_samples = least, .max_samples = least});
+    // The strata the ocean node's per-stratum cell cap was set for (reference_stratum_cells).
+    const int strata = reference_strata(reference);
     const int round = strata * strata;
     max_samples = std::max(round, max_samples / round * round);
     for (int goal = std::max(round, least / round * round);; goal *= 2) {

@@ -218,8 +218,8 @@ std::string case_key(const SuiteCase& c) {
   return c.index >= 0 ? "cases[" + std::to_string(c.index) + "]" : "case " + c.name;
 }
 
-// The overrides of case `c` rendered with `method` (null: the case's own scene), in the order
-// case_assignments gives.
+// The overrides of case `c` rendered with `method` (null: the case's own scene): the suite's
+// base, the case's set, then the method's set (case_assignments without the labels).
 std::vector<LabelledOverride> case_overrides(const Suite& suite, const SuiteCase& c,
                                              const SuiteMethod* method) {
   std::vector<LabelledOverride> out;
@@ -450,10 +450,7 @@ Suite default_suite() { return load_suite_text(default_suite_json(), "default su
 std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c,
                                           const SuiteMethod* method) {
   std::vector<std::string> out;
-  for (const SceneOverride& o : suite.base) out.push_back(o.assignment());
-  for (const SceneOverride& o : c.set) out.push_back(o.assignment());
-  if (method)
-    for (const SceneOverride& o : method->set) out.push_back(o.assignment());
+  for (const LabelledOverride& o : case_overrides(suite, c, method)) out.push_back(o.assignment);
   return out;
 }
 
