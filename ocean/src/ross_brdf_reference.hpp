@@ -1,9 +1,10 @@
 // Double-precision CPU reference of the Ross et al. ocean BRDF and its lighting terms: the
-// functions of shaders/ocean/ross_brdf.glsl (and, through it, shaders/ocean/smith.glsl) compiled
-// as C++ (Number = double, vec2/vec3 = glm::dvec2/dvec3) in namespace thalassa::glsl, e.g.
+// functions of shaders/ocean/ross_brdf.glsl (and, through it, shaders/ocean/smith.glsl) and of
+// shaders/ocean/cell_slope_density.glsl (the reference method's per-cell sun) compiled as C++
+// (Number = double, vec2/vec3 = glm::dvec2/dvec3) in namespace thalassa::glsl, e.g.
 // thalassa::glsl::OceanRossBrdf(v, l, slope_variance, fresnel_r). Frames (the tangent frame:
 // x along the wind, y across, z the mean normal), units and sources are documented in the .glsl
-// file. Header-only; needs shaders/ on the include path. Like every user of common/glsl_cpp.hpp,
+// files. Header-only; needs shaders/ on the include path. Like every user of common/glsl_cpp.hpp,
 // a file including this header cannot use IN, OUT or INOUT as names (they are macros of the
 // shared GLSL / C++ subset).
 
@@ -20,6 +21,7 @@
 namespace thalassa::glsl {
 namespace {
 #include "ocean/ross_brdf.glsl"
+#include "ocean/cell_slope_density.glsl"
 }  // namespace
 }  // namespace thalassa::glsl
 #pragma GCC diagnostic pop

@@ -55,7 +55,7 @@ uniform float resolved_wave_scale;
 uniform vec2 constant_variance;
 #endif
 #if defined(METHOD_REFERENCE) && defined(REFERENCE_SUN)
-#include "ocean/ross_brdf.glsl"
+#include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_sun.glsl"
 #endif
 

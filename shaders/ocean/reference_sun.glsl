@@ -12,18 +12,19 @@
 // the rasterised rest positions' screen derivatives) is cut into Kx x Ky cells no wider than
 // `reference_spacing` (a fraction of the shortest wave's length, so that every wave is resolved
 // and its slope varies nearly linearly across a cell). On each cell the slope field is the
-// bilinear patch of its four corners' exact slopes (every wave, w_n = 1), so the cell's slopes
-// spread uniformly over a parallelogram in slope space of edges d_u, d_v; the sun that the cell
-// reflects is the Ross BRDF (ocean/ross_brdf.glsl) of the cell's mean normal with that spread's
-// second moments, (d_u^2 + d_v^2) / 12 per axis (a box's variance). Summed over cells this is
-// the integral over the footprint of delta(slope(x) - mirror slope) - the sum over the
-// footprint's points that mirror the sun of 1 / |det d slope / d x| - smoothed by a kernel of
-// each cell's spread: no sampling noise from the sun's tiny disc, and a bias that vanishes as
-// the cells shrink (the kernel adds its variance, <= a few % of the sea's, to the slope
-// distribution; docs/validation.md measures it). Cells are weighted by their displaced area
-// projected toward the eye, N.v with N = d_dx x d_dy (per unit rest area: the visible area, as
-// the rasteriser weights the pixel's samples); back-facing cells (N.v < 0) are hidden (0).
-// Masking of a cell by a crest inside the same pixel is not modelled: the rasterised grid
+// bilinear patch of its four corners' exact slopes (every wave, w_n = 1), taken in the tangent
+// frame of the cell's mean normal; its slopes spread over the parallelogram of slope space that
+// the corners span, and the sun the cell reflects is eq. 15 with that parallelogram's density,
+// convolved with the sun's disc, in place of the Gaussian p (OceanCellReflectedSun,
+// ocean/cell_slope_density.glsl). Summed over cells this is the integral over the footprint of
+// delta(slope(x) - mirror slope) - the sum over the footprint's points that mirror the sun of
+// 1 / |det d slope / d x| - seen through the sun's disc: no sampling noise from the sun's tiny
+// disc, and, because the cells' parallelograms tile slope space as the cells tile the sea (a
+// partition of unity), hardly any dependence on where the cells fall (stop 15's Gaussian per
+// cell rippled by up to 39 % with it; docs/validation.md). Cells are weighted by their displaced
+// area projected toward the eye, N.v with N = d_dx x d_dy (per unit rest area: the visible
+// area, as the rasteriser weights the pixel's samples); back-facing cells (N.v < 0) are hidden
+// (0). Masking of a cell by a crest inside the same pixel is not modelled: the rasterised grid
 // resolves visibility at the pixel's scale only.
 //
 // Strata. The renderer cuts each pixel into s x s square strata and gives each frame's sample a
@@ -78,6 +79,13 @@ vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
   return vec3(n_local.xy / max(n_local.z, 1e-6), weight);
 }
 
+// The slopes zeta (dimensionless) in the tangent frame (t_x, t_y, n) of a facet of normal f
+// (any length, world frame): f = (-zeta, 1) up to its length. A corner tilted 90 degrees or more
+// from the cell's mean normal (not a small cell of a resolved sea) is held at 1e6.
+vec2 ReferenceCellFrameSlope(vec3 f, vec3 t_x, vec3 t_y, vec3 n) {
+  return -vec2(dot(f, t_x), dot(f, t_y)) / max(dot(f, n), 1e-6 * length(f));
+}
+
 // The sun reflected by the pixel's stratum whose sample point on the sea at rest is x (m, nadir
 // frame), with rest-position screen derivatives dx, dy (m per pixel), per unit L_sun Omega_sun
 // as OceanReflectedSun; v toward the eye, sun toward the sun (nadir frame), downwind unit (east,
@@ -101,7 +109,6 @@ vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 down
   const vec2 k = vec2(float(kx), float(ky));
   const vec2 step = stratum / k;
   const vec2 corner0 = lo - o + (f - 0.5) * step;
-  const vec2 crosswind = vec2(-downwind.y, downwind.x);
 
   // The previous row of corners: slope (xy) and weight (z).
   vec3 previous[REFERENCE_MAX_CELLS + 1];
@@ -115,22 +122,26 @@ vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 down
         const vec3 c00 = previous[i - 1], c10 = previous[i], c01 = left, c11 = here;
         const vec2 slope = 0.25 * (c00.xy + c10.xy + c01.xy + c11.xy);
         const float weight = 0.25 * (c00.z + c10.z + c01.z + c11.z);
-        // The parallelogram's edges in slope space, along the wind and across it.
-        const vec2 d_u = 0.5 * ((c10.xy - c00.xy) + (c11.xy - c01.xy));
-        const vec2 d_v = 0.5 * ((c01.xy - c00.xy) + (c11.xy - c10.xy));
-        const vec2 u_w = vec2(dot(d_u, downwind), dot(d_u, crosswind));
-        const vec2 v_w = vec2(dot(d_v, downwind), dot(d_v, crosswind));
-        const vec2 spread = (u_w * u_w + v_w * v_w) / 12.0;
         if (weight > 0.0) {
           const vec3 cell_point = x + (c.x - 0.5 * step.x) * dx + (c.y - 0.5 * step.y) * dy;
-          vec3 n = FrameSeaTangentFrame(cell_point) * normalize(vec3(slope, 1.0));
+          const mat3 frame = FrameSeaTangentFrame(cell_point);
+          vec3 n = frame * normalize(vec3(slope, 1.0));
           if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
           const vec3 wind = vec3(downwind, 0.0);
           const vec3 t_x = normalize(wind - dot(wind, n) * n);
           const vec3 t_y = cross(n, t_x);
-          sum_sun += weight * OceanReflectedSun(OceanToTangentFrame(v, t_x, t_y, n),
-                                                OceanToTangentFrame(sun, t_x, t_y, n), spread,
-                                                fresnel_r);
+          // The corners' slopes in the cell's tangent frame, and the parallelogram they span
+          // (ocean/cell_slope_density.glsl): centre, edges along the cell's two sides.
+          const vec2 z00 = ReferenceCellFrameSlope(frame * vec3(c00.xy, 1.0), t_x, t_y, n);
+          const vec2 z10 = ReferenceCellFrameSlope(frame * vec3(c10.xy, 1.0), t_x, t_y, n);
+          const vec2 z01 = ReferenceCellFrameSlope(frame * vec3(c01.xy, 1.0), t_x, t_y, n);
+          const vec2 z11 = ReferenceCellFrameSlope(frame * vec3(c11.xy, 1.0), t_x, t_y, n);
+          const vec2 centre = 0.25 * (z00 + z10 + z01 + z11);
+          const vec2 d_u = 0.5 * ((z10 - z00) + (z11 - z01));
+          const vec2 d_v = 0.5 * ((z01 - z00) + (z11 - z10));
+          sum_sun += weight * OceanCellReflectedSun(OceanToTangentFrame(v, t_x, t_y, n),
+                                                    OceanToTangentFrame(sun, t_x, t_y, n), centre,
+                                                    d_u, d_v, fresnel_r);
           sum_weight += weight;
         }
       }

@@ -257,21 +257,32 @@ Number OceanSchlickFresnel(IN(Number) cos_incidence, IN(Number) fresnel_r) {
   return fresnel_r + (1.0 - fresnel_r) * x2 * x2 * x;
 }
 
+// F(v.h) / (4 h_z^4) (dimensionless), the numerator common to eq. 13 and 15 without the slope
+// density, and the slopes zeta_h of the facet that mirrors l into v, for unit v and l in the
+// tangent frame; 0 (and zeta_h = 0) when no facet within OCEAN_MIN_FACET_COS of the vertical
+// does (v = -l included).
+Number OceanMirrorFacetFactor(IN(vec3) v, IN(vec3) l, IN(Number) fresnel_r, OUT(vec2) zeta_h) {
+  vec3 sum = v + l;  // 2 (v.h) h: not normalised.
+  Number sum_length = length(sum);
+  if (sum.z <= OCEAN_MIN_FACET_COS * sum_length) {
+    zeta_h = vec2(0.0);
+    return 0.0;
+  }
+  Number h_z = sum.z / sum_length;
+  zeta_h = vec2(-sum.x, -sum.y) / sum.z;
+  Number fresnel = OceanSchlickFresnel(dot(v, sum) / sum_length, fresnel_r);
+  Number h_z2 = h_z * h_z;
+  return fresnel / (4.0 * h_z2 * h_z2);
+}
+
 // p(zeta_h) F(v.h) / (4 h_z^4) (dimensionless), the numerator common to eq. 13 and 15, for unit
 // v and l in the tangent frame; 0 when no facet within OCEAN_MIN_FACET_COS of the vertical
 // mirrors l into v (v = -l included).
 Number OceanMirrorFacetTerm(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
                             IN(Number) fresnel_r) {
-  vec3 sum = v + l;  // 2 (v.h) h: not normalised.
-  Number sum_length = length(sum);
-  if (sum.z <= OCEAN_MIN_FACET_COS * sum_length) {
-    return 0.0;
-  }
-  Number h_z = sum.z / sum_length;
-  vec2 zeta_h = vec2(-sum.x, -sum.y) / sum.z;
-  Number fresnel = OceanSchlickFresnel(dot(v, sum) / sum_length, fresnel_r);
-  Number h_z2 = h_z * h_z;
-  return OceanSlopePdf(zeta_h, slope_variance) * fresnel / (4.0 * h_z2 * h_z2);
+  vec2 zeta_h;
+  Number factor = OceanMirrorFacetFactor(v, l, fresnel_r, zeta_h);
+  return factor > 0.0 ? OceanSlopePdf(zeta_h, slope_variance) * factor : 0.0;
 }
 
 // The Ross BRDF (sr^-1), eq. 13, for unit v and l in the tangent frame, slope variances
@@ -291,6 +302,13 @@ Number OceanRossBrdf(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance, IN(Number)
   return OceanMirrorFacetTerm(v, l, slope_variance, fresnel_r) / masked_cos_vl;
 }
 
+// cos theta_v (1 + Lambda_v + Lambda_l) written as the facing area of v plus cos theta_v
+// Lambda_l (dimensionless), eq. 15's denominator: finite and positive down to a horizontal view
+// for unit v (v_z >= 0) and l (l_z > 0) in the tangent frame, slope variances s2 (per axis).
+Number OceanSunMaskedCosView(IN(vec3) v, IN(vec3) l, IN(vec2) s2) {
+  return OceanSmithFacingAreaToward(v, s2) + v.z * OceanSmithLambdaToward(l, s2);
+}
+
 // The reflected sun radiance per unit sun radiance and solid angle, L_sun Omega_sun
 // (dimensionless, i.e. sr^-1 times sr), eq. 15: brdf(v, l) cos theta_l with the slope variances
 // raised to OCEAN_SUN_MIN_SLOPE_VARIANCE (sec. 5.1: the sun's disc; the only place the paper
@@ -304,8 +322,7 @@ Number OceanReflectedSun(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
     return 0.0;
   }
   vec2 s2 = max(slope_variance, OCEAN_SUN_MIN_SLOPE_VARIANCE);
-  Number masked_cos_v = OceanSmithFacingAreaToward(v, s2) + v.z * OceanSmithLambdaToward(l, s2);
-  return OceanMirrorFacetTerm(v, l, s2, fresnel_r) / masked_cos_v;
+  return OceanMirrorFacetTerm(v, l, s2, fresnel_r) / OceanSunMaskedCosView(v, l, s2);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -65,7 +65,8 @@ class ReferenceTest : public ::testing::Test {
   // Evaluates FUNCTION over the grid; rows of the result follow the texel rows (bottom-up).
   std::vector<float> evaluate(int function, const glm::dvec3& sun,
                               const glm::dvec2& slope_variance = glm::dvec2(0.0),
-                              const gl::Defines& extra_defines = {}) {
+                              const gl::Defines& extra_defines = {},
+                              const glm::dvec4& cell_edges = glm::dvec4(0.0)) {
     gl::Defines defines = extra_defines;
     defines["FUNCTION"] = std::to_string(function);
     const GLuint program = library_->program(
@@ -77,6 +78,8 @@ class ReferenceTest : public ::testing::Test {
     glProgramUniform3f(program, glGetUniformLocation(program, "sun_dir"), sun.x, sun.y, sun.z);
     glProgramUniform2f(program, glGetUniformLocation(program, "slope_variance"), slope_variance.x,
                        slope_variance.y);
+    glProgramUniform4f(program, glGetUniformLocation(program, "cell_edges"), cell_edges.x,
+                       cell_edges.y, cell_edges.z, cell_edges.w);
     glBindVertexArray(vao_.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glEnable(GL_DEPTH_TEST);
@@ -283,6 +286,28 @@ TEST_F(ReferenceTest, RossBrdfSunFresnelAndLambdaMatchDoubleReference) {
       std::printf("Ross sun/Fresnel/Lambda, variance (%g, %g), sun zenith %5.1f deg: worst %.3g\n",
                   sv.x, sv.y, zenith, worst);
     }
+  }
+}
+
+// The reference method's per-cell sun (issue 6, point 1; ocean/cell_slope_density.glsl): a
+// cell's slope density and the sun it reflects, for cells of each regime (box, blend, sliver,
+// flat), over the grid of directions (see evaluate.frag, FUNCTION 11).
+TEST_F(ReferenceTest, CellSlopeDensityAndSunMatchDoubleReference) {
+  const glm::dvec3 sun = sun_at(40.0);
+  const double sigma = std::sqrt(glsl::OCEAN_SUN_MIN_SLOPE_VARIANCE);
+  for (const glm::dvec4 edges : {glm::dvec4(0.02, 0.0, 0.0, 0.02), glm::dvec4(0.02, 0.0, 0.005, 0.0026),
+                                 glm::dvec4(0.02, 0.0, 0.01, 0.0008), glm::dvec4(0.0)}) {
+    const glm::dvec4 e = glm::dvec4(glm::vec4(edges));  // as the GPU sees them
+    const glm::dvec2 d_u(e.x, e.y), d_v(e.z, e.w);
+    const auto gpu = evaluate(11, sun, glm::dvec2(0.0), {}, e);
+    const double worst = compare(gpu, 2, [&](const glm::dvec3& v) {
+      const glm::dvec2 r(v.x * 0.05, v.y * 0.05);
+      const glm::dvec3 up_v = glm::normalize(glm::dvec3(v.x, v.y, std::abs(v.z) + 0.05));
+      return glm::dvec4(glsl::OceanCellSlopeDensity(r, d_u, d_v, sigma),
+                        glsl::OceanCellReflectedSun(up_v, sun, r, d_u, d_v, 0.02), 0.0, 1.0);
+    });
+    std::printf("cell density and sun, edges (%g, %g), (%g, %g): worst %.3g\n", e.x, e.y, e.z,
+                e.w, worst);
   }
 }
 

@@ -6,11 +6,14 @@
 #include "atmosphere/sky_provider.glsl"
 #endif
 #include "ocean/ross_brdf.glsl"
+#include "ocean/cell_slope_density.glsl"
 #include "ocean/trochoids.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
 uniform vec3 sun_dir;         // unit, east-north-up
 uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
+// FUNCTION 11: a cell's slope-space edges d_u (xy) and d_v (zw), tangent frame.
+uniform vec4 cell_edges;
 // FUNCTION 6 and 7: the wave set as the ocean node packs it (two vec4 per wave) and the local
 // position (m, relative to the frame's origin) in the input texel's xy.
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
@@ -49,6 +52,16 @@ void main() {
                 OceanVisibleSlopePdf(zeta, up_v, sun_dir, slope_variance),
                 OceanVisibleSlopePdfE(zeta, up_v, slope_variance),
                 WaveFilterWeight(1.0, 2.5, 4.0 * abs(v.z)));
+#elif FUNCTION == 11
+  // The reference's per-cell sun (ocean/cell_slope_density.glsl): the cell's slope density at
+  // zeta = v.xy / 20 from its centre, and the sun it reflects toward up_v with its centre at
+  // v.xy / 20.
+  const vec2 d_u = cell_edges.xy, d_v = cell_edges.zw;
+  const vec3 up_v = normalize(vec3(v.x, v.y, abs(v.z) + 0.05));
+  result = vec4(OceanCellSlopeDensity(vec2(v.x, v.y) * 0.05, d_u, d_v,
+                                      sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE)),
+                OceanCellReflectedSun(up_v, sun_dir, vec2(v.x, v.y) * 0.05, d_u, d_v, 0.02), 0.0,
+                1.0);
 #elif FUNCTION == 9 || FUNCTION == 10
   // The sky-map mapping U at zeta = 0 and its derivatives (eq. 27) for a view above the
   // surface, in a tangent frame tilted from the vertical; and Appendix A's slope variance.
