@@ -62,6 +62,8 @@ struct ValidateArgs {
   std::string backend;  // empty: the default headless backend
   // --case: the names (or shell patterns, "wind10_*") of the cases to run; empty: every case.
   std::vector<std::string> cases;
+  // --reference-samples: overrides the suite's reference.pixel_samples; 0: the suite's.
+  int reference_samples = 0;
 };
 
 struct InfoArgs {

@@ -279,7 +279,8 @@ TEST_F(Cli, ValidateWritesTheReport) {
       {"name": "bad_lat", "set": {"camera.lat": 95}, "expect": 2, "error": "camera.lat"}
     ]
   })");
-  const Result r = run("validate suite.json -o report");
+  // --reference-samples replaces the suite's reference.pixel_samples (4).
+  const Result r = run("validate suite.json -o report --reference-samples 2");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* file : {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv",
                            "cases.csv", "images/near_reference_sun.exr", "images/near_full_all.png",
@@ -289,6 +290,9 @@ TEST_F(Cli, ValidateWritesTheReport) {
   const auto results = nlohmann::json::parse(in);
   EXPECT_EQ(results["cases"].size(), 2u);
   EXPECT_EQ(results["cases"][1]["exit_status"], 2);
+  EXPECT_EQ(results["reference"]["pixel_samples"], 2);
+  EXPECT_EQ(results["cases"][0]["methods"][0]["terms"][0]["samples"], 2);  // the reference's
+  EXPECT_EQ(results["cases"][0]["methods"][1]["terms"][0]["samples"], 1);  // full's
   // The reference says on how many rows its sun resolved every wave: 2 cm waves seen from 100 m
   // at 24 x 16 are resolved on no sea row (only the sky's rows count as resolved), so no row is
   // compared and the sun's ratio plot says so instead of failing.
@@ -300,6 +304,11 @@ TEST_F(Cli, ValidateWritesTheReport) {
 TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   write("bad.json", R"({"suite": "bad", "cases": [{"name": "x", "set": {"camera.hieght": 4}}]})");
   expect_invalid(run("validate bad.json -o out"), {"bad.json", "camera.hieght"});
+  // An option out of its range: CLI11's message (and its "Run with --help" line), status 2.
+  const Result range = run("validate -o out --reference-samples 0");
+  EXPECT_EQ(range.status, 2) << range.err;
+  EXPECT_NE(range.err.find("--reference-samples"), std::string::npos) << range.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
   // A case that expects to be refused but renders: the run ends with status 1.
   write("wrong.json", R"({"suite": "wrong", "base": {"image.width": 16, "image.height": 8},
     "cases": [{"name": "fine", "set": {"camera.lat": 45}, "expect": 2, "error": "lat"}]})");

@@ -110,6 +110,9 @@ Report synthetic_report() {
   report.source = "unit.json";
   report.backend = "osmesa";
   report.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  report.reference.pixel_samples = 64;
+  report.reference.sun_normal_samples = 4096;
+  report.reference.sun_cells_per_wavelength = 12.5;
   report.version = "0.1.0";
   CaseResult c;
   c.name = "wind10_100m_low_sun";
@@ -132,6 +135,7 @@ Report synthetic_report() {
       TermResult t;
       t.term = term;
       t.frame_ms = m.ms * (term == std::string("all") ? 1.5 : 1.0);
+      t.samples = m.method == std::string("reference") ? 64 : 1;
       t.exr = std::string("images/") + c.name + "_" + m.name + "_" + term + ".exr";
       t.png = std::string("images/") + c.name + "_" + m.name + "_" + term + ".png";
       t.metrics = synthetic_metrics(seed += 0.7, 40);
@@ -250,6 +254,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     const TermResult& t = *terms.at({f[col["method"]], f[col["term"]]});
     const std::string what = f[col["method"]] + "/" + f[col["term"]];
     expect_same(csv_number(f[col["frame_ms"]]), t.frame_ms, what + " frame_ms");
+    EXPECT_EQ(f[col["samples"]], std::to_string(t.samples)) << what;
     expect_same(csv_number(f[col["rel_l1_l"]]), t.metrics.error.relative_l1.l, what + " l1");
     expect_same(csv_number(f[col["rel_l1_b"]]), t.metrics.error.relative_l1.b, what + " l1 b");
     expect_same(csv_number(f[col["rel_rms_b"]]), t.metrics.error.relative_rms.b, what + " rms b");
@@ -293,6 +298,9 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   // results.json: the whole report, read back.
   const Report back = report_from_json(read_text(dir_ / "results.json"));
   EXPECT_EQ(back.renderer, report.renderer);
+  EXPECT_EQ(back.reference.pixel_samples, report.reference.pixel_samples);
+  EXPECT_EQ(back.reference.sun_normal_samples, report.reference.sun_normal_samples);
+  EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   ASSERT_EQ(back.cases.size(), 2u);
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());
@@ -312,6 +320,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
       const TermResult &x = a.terms[ti], &w = b.terms[ti];
       const std::string what = b.name + "/" + w.term;
       expect_same(x.frame_ms, w.frame_ms, what);
+      EXPECT_EQ(x.samples, w.samples) << what;
       EXPECT_EQ(x.flicker.has_value(), w.flicker.has_value()) << what;
       expect_same(x.flicker.value_or(NAN), w.flicker.value_or(NAN), what);
       expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);

@@ -373,6 +373,7 @@ std::string metrics_csv(const Report& report) {
                               "kind",
                               "term",
                               "frame_ms",
+                              "samples",
                               "sea_pixels",
                               "rel_l1_l",
                               "rel_l1_r",
@@ -406,6 +407,7 @@ std::string metrics_csv(const Report& report) {
                          m.method,
                          t.term,
                          number(t.frame_ms),
+                         std::to_string(t.samples),
                          std::to_string(e.pixels),
                          number(e.relative_l1.l),
                          number(e.relative_l1.r),
@@ -490,6 +492,12 @@ std::string index_html(const Report& report,
   h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
   h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
        "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+  h += "<p>Reference: up to " + std::to_string(report.reference.pixel_samples) +
+       " samples per pixel (doubling from 16 while a row's total changes by 1 % or more); its "
+       "sun in cells of at most 1/" + short_number(report.reference.sun_cells_per_wavelength) +
+       " of the shortest wavelength, at most " +
+       std::to_string(int(std::lround(std::sqrt(double(report.reference.sun_normal_samples))))) +
+       " per pixel side.</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
          " of its " + std::to_string(report.suite_cases) +
@@ -541,7 +549,8 @@ std::string index_html(const Report& report,
     }
     h += "</table>\n";
     // Numbers.
-    h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>rel. L1</th><th>rel. "
+    h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>samples</th><th>rel. "
+         "L1</th><th>rel. "
          "RMS</th><th>max |row ratio - 1|</th><th>horizon mean</th><th>horizon std</th>"
          "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
     for (const MethodResult& m : c.methods)
@@ -549,6 +558,7 @@ std::string index_html(const Report& report,
         const TermResult* rt = ref ? term_of(*ref, t.term) : nullptr;
         h += "<tr><td class=\"t\">" + html(m.name) + "</td><td class=\"t\">" + html(t.term) +
              "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
+             (t.samples > 0 ? std::to_string(t.samples) : std::string("-")) + "</td><td>" +
              short_number(t.metrics.error.relative_l1.l) + "</td><td>" +
              short_number(t.metrics.error.relative_rms.l) + "</td><td>" +
              short_number(t.metrics.max_row_deviation) + "</td><td>" +
@@ -609,6 +619,10 @@ std::string report_json(const Report& report) {
   j["backend"] = report.backend;
   j["renderer"] = report.renderer;
   j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
+  j["reference"] = {{"pixel_samples", report.reference.pixel_samples},
+                    {"sun_normal_samples", report.reference.sun_normal_samples},
+                    {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
+                    {"check_convergence", report.reference.check_convergence}};
   j["suite_cases"] = std::max(report.suite_cases, static_cast<int>(report.cases.size()));
   j["cases"] = ojson::array();
   for (const CaseResult& c : report.cases) {
@@ -640,6 +654,7 @@ std::string report_json(const Report& report) {
         ojson jt;
         jt["term"] = t.term;
         jt["frame_ms"] = t.frame_ms;
+        jt["samples"] = t.samples;
         jt["exr"] = t.exr;
         jt["png"] = t.png;
         if (t.flicker) jt["flicker"] = *t.flicker;
@@ -689,6 +704,13 @@ Report report_from_json(const std::string& json_text) {
   report.horizon = {get_number(j.at("horizon").at("depth_deg")),
                     get_number(j.at("horizon").at("bin_deg"))};
   report.suite_cases = j.value("suite_cases", 0);
+  if (j.contains("reference")) {
+    const ojson& jr = j.at("reference");
+    report.reference.pixel_samples = jr.at("pixel_samples");
+    report.reference.sun_normal_samples = jr.at("sun_normal_samples");
+    report.reference.sun_cells_per_wavelength = get_number(jr.at("sun_cells_per_wavelength"));
+    report.reference.check_convergence = jr.at("check_convergence");
+  }
   for (const ojson& jc : j.at("cases")) {
     CaseResult c;
     c.name = jc.at("name");
@@ -713,6 +735,7 @@ Report report_from_json(const std::string& json_text) {
         TermResult t;
         t.term = jt.at("term");
         t.frame_ms = get_number(jt.at("frame_ms"));
+        t.samples = jt.value("samples", 0);
         t.exr = jt.at("exr");
         t.png = jt.at("png");
         t.flicker = optional_from(jt, "flicker");

@@ -29,6 +29,9 @@ class ReportError : public std::runtime_error {
 struct TermResult {
   std::string term;       // one of kTerms ("sun", "sky", "sea", "air", "all")
   double frame_ms = 0.0;  // the frame's time, ms (RenderStats::frame_ms: median GPU time)
+  // Samples per pixel of the frame (RenderStats::samples): the reference's after its doublings,
+  // 1 for the other methods; 0 when not known (a report written before stop 16).
+  int samples = 0;
   std::string exr;        // the image, relative to the report's folder ("" when not written)
   std::string png;        // its tone-mapped PNG, relative to the report's folder
   TermMetrics metrics;    // against the case's reference (compare_images)
@@ -78,6 +81,7 @@ struct Report {
   std::string renderer;     // RenderStats::renderer (GL_RENDERER)
   std::string version;      // thalassa's version
   HorizonBandOptions horizon;
+  ReferenceSettings reference;  // Suite::reference, as run (thalassa validate --reference-samples)
   std::vector<CaseResult> cases;
   // The cases in the suite file: more than cases.size() when `thalassa validate --case` ran
   // some of them (0: not known, taken as cases.size()).
