@@ -219,15 +219,19 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   std::string script = "set multiplot layout 2,1 title '" + c.name + ", " + term +
                        ": total radiance per image row (fig. 10)'\n"
                        "set key outside right\nset grid\nset xlabel 'image row (0 = top)'\n"
+                       // The same left margin in both panels, so that their rows line up.
+                       "set lmargin 15\n"
                        "set xrange [0:" +
                        std::to_string(rows > 0 ? rows - 1 : 0) +
                        "]\n"
-                       "set ylabel 'row total luminance (W m^-2 sr^-1 nm^-1)'\nplot ";
+                       "set ylabel \"row total luminance\\n(W m^-2 sr^-1 nm^-1)\"\nplot ";
+  // Each method keeps its colour (line type i + 1) in both panels: the ratio panel's line of 1
+  // would otherwise take the first colour and shift the others by one.
   for (std::size_t i = 0; i < curves.size(); ++i)
     script += std::string(i ? ", " : "") + "'" + name +
-              ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 title '" +
-              curves[i].first + "'";
-  script += "\nset ylabel 'ratio to the reference'\n";
+              ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 lt " +
+              std::to_string(i + 1) + " title '" + curves[i].first + "'";
+  script += "\n";
   // No defined ratio at all (the reference's sun resolved no row, or the term is black): gnuplot
   // refuses a plot whose every point is undefined, so the panel says so over the line of 1.
   bool any_ratio = false;
@@ -237,16 +241,18 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
     // On a log scale, so that half and twice the reference lie as far from 1; a method black
     // where the reference is lit (ratio 0) or 100 times too bright is drawn at the clamp.
     script +=
-        "set logscale y 2\nset ylabel 'ratio to the reference (log scale, clamped to "
-        "[1/64, 64])'\nclamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 "
+        "set logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
+        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 "
         "lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
       script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(3 + 2 * i) +
-                ")) with lines lw 2 title '" + curves[i].first + "'";
+                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" +
+                curves[i].first + "'";
   } else {
     script +=
         "set label 1 'no row measured (no row resolved by the reference, or none lit)' at graph "
-        "0.5, graph 0.5 center\nplot 1 with lines dt 2 title 'ratio 1'\nunset label 1";
+        "0.5, graph 0.5 center\nset ylabel 'ratio to the reference'\nplot 1 with lines dt 2 "
+        "title 'ratio 1'\nunset label 1";
   }
   script += "\nunset multiplot\n";
   return draw(gnuplot, plots, name, data, script, options);
