@@ -147,15 +147,18 @@ class CaseRunner {
                        const std::string& term) {
     RendererOptions options;
     options.method = *ocean::parse_method(method.method);
-    options.reference.max_samples = suite_.reference.pixel_samples;
-    options.reference.min_samples =
-        std::min(options.reference.min_samples, suite_.reference.pixel_samples);
-    // The sun's normal samples per pixel: cells of its footprint, round(sqrt(n)) per side.
-    options.reference.sun_cells =
-        std::max(1, int(std::lround(std::sqrt(double(suite_.reference.sun_normal_samples)))));
-    options.reference.sun_cells_per_wavelength = suite_.reference.sun_cells_per_wavelength;
     const std::string problem = parse_terms(validation::terms_option(term), options.terms);
     if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
+    const validation::ReferenceSettings& reference = suite_.reference;
+    const int most = options.terms.sun || reference.pixel_samples_without_sun <= 0
+                         ? reference.pixel_samples
+                         : reference.pixel_samples_without_sun;
+    options.reference.max_samples = most;
+    options.reference.min_samples = std::min(options.reference.min_samples, most);
+    // The sun's normal samples per pixel: cells of its footprint, round(sqrt(n)) per side.
+    options.reference.sun_cells =
+        std::max(1, int(std::lround(std::sqrt(double(reference.sun_normal_samples)))));
+    options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
     const bool over_time = suite_.flicker.frames >= 2 &&
                            std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),
                                      term) != suite_.flicker.terms.end();

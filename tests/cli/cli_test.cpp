@@ -271,15 +271,16 @@ TEST_F(Cli, ValidateWritesTheReport) {
     "suite": "tiny",
     "base": {"image.width": 24, "image.height": 16, "camera.height": 100, "camera.pitch": -20},
     "methods": ["reference", "full"],
-    "terms": ["sun", "all"],
+    "terms": ["sun", "sky", "all"],
     "flicker": {"frames": 2, "dt": 0.04, "terms": ["all"]},
-    "reference": {"pixel_samples": 4},
+    "reference": {"pixel_samples": 4, "pixel_samples_without_sun": 8},
     "cases": [
       {"name": "near", "set": {"ocean.wind_speed": 8}},
       {"name": "bad_lat", "set": {"camera.lat": 95}, "expect": 2, "error": "camera.lat"}
     ]
   })");
-  // --reference-samples replaces the suite's reference.pixel_samples (4).
+  // --reference-samples replaces the suite's reference.pixel_samples (4); the sky alone keeps
+  // reference.pixel_samples_without_sun (8).
   const Result r = run("validate suite.json -o report --reference-samples 2");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* file : {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv",
@@ -291,7 +292,10 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(results["cases"].size(), 2u);
   EXPECT_EQ(results["cases"][1]["exit_status"], 2);
   EXPECT_EQ(results["reference"]["pixel_samples"], 2);
-  EXPECT_EQ(results["cases"][0]["methods"][0]["terms"][0]["samples"], 2);  // the reference's
+  const auto& reference_terms = results["cases"][0]["methods"][0]["terms"];
+  EXPECT_EQ(reference_terms[0]["samples"], 2);  // sun
+  EXPECT_EQ(reference_terms[1]["samples"], 8);  // sky
+  EXPECT_EQ(reference_terms[2]["samples"], 2);  // all
   EXPECT_EQ(results["cases"][0]["methods"][1]["terms"][0]["samples"], 1);  // full's
   // The reference says on how many rows its sun resolved every wave: 2 cm waves seen from 100 m
   // at 24 x 16 are resolved on no sea row (only the sky's rows count as resolved), so no row is

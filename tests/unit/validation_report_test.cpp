@@ -111,6 +111,7 @@ Report synthetic_report() {
   report.backend = "osmesa";
   report.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
   report.reference.pixel_samples = 64;
+  report.reference.pixel_samples_without_sun = 512;
   report.reference.sun_normal_samples = 4096;
   report.reference.sun_cells_per_wavelength = 12.5;
   report.version = "0.1.0";
@@ -299,6 +300,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   const Report back = report_from_json(read_text(dir_ / "results.json"));
   EXPECT_EQ(back.renderer, report.renderer);
   EXPECT_EQ(back.reference.pixel_samples, report.reference.pixel_samples);
+  EXPECT_EQ(back.reference.pixel_samples_without_sun, report.reference.pixel_samples_without_sun);
   EXPECT_EQ(back.reference.sun_normal_samples, report.reference.sun_normal_samples);
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   ASSERT_EQ(back.cases.size(), 2u);

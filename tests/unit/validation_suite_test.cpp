@@ -54,6 +54,8 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   }
   EXPECT_EQ(suite.terms, (std::vector<std::string>{"sun", "sky", "sea", "all"}));
   EXPECT_GE(suite.flicker.frames, 2);
+  // The sky's and the refracted light's reference is cheap: it gets more samples than the sun's.
+  EXPECT_GT(suite.reference.pixel_samples_without_sun, suite.reference.pixel_samples);
   // Every combination of wind, camera height and sun of issue 6, point 4, once; each case's
   // scene (and with each variant) builds.
   std::set<std::tuple<double, double, double>> seen;
@@ -324,6 +326,10 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: flicker.dt: expected a number in (0, 3600] (s), got 0"},
       {R"({"suite": "s", "reference": {"pixel_samples": 0.5}, "cases": [)" + ok_case + "]}",
        "t.json: reference.pixel_samples: expected an integer in [1, 4096], got 0.5"},
+      {R"({"suite": "s", "reference": {"pixel_samples_without_sun": 8192}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: reference.pixel_samples_without_sun: expected an integer in [1, 4096], got "
+       "8192"},
       {R"({"suite": "s", "horizon": {"depth_deg": 5, "bin_deg": 6}, "cases": [)" + ok_case + "]}",
        "t.json: horizon.bin_deg: expected a number in (0, 5] (degrees; at most depth_deg), got 6"},
       {R"({"suite": "s", "base": {"image.width": 0}, "cases": [)" + ok_case + "]}",

@@ -498,8 +498,12 @@ std::string index_html(const Report& report,
   h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
   h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
        "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+  const int without_sun = report.reference.pixel_samples_without_sun;
   h += "<p>Reference: up to " + std::to_string(report.reference.pixel_samples) +
-       " samples per pixel (doubling from 16 while a row's total changes by 1 % or more); its "
+       " samples per pixel" +
+       (without_sun > 0 ? " (" + std::to_string(without_sun) + " for the terms without the sun)"
+                        : std::string()) +
+       ", doubling from 16 while a row's total changes by 1 % or more; its "
        "sun in cells of at most 1/" + short_number(report.reference.sun_cells_per_wavelength) +
        " of the shortest wavelength, at most " +
        std::to_string(int(std::lround(std::sqrt(double(report.reference.sun_normal_samples))))) +
@@ -626,6 +630,7 @@ std::string report_json(const Report& report) {
   j["renderer"] = report.renderer;
   j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
   j["reference"] = {{"pixel_samples", report.reference.pixel_samples},
+                    {"pixel_samples_without_sun", report.reference.pixel_samples_without_sun},
                     {"sun_normal_samples", report.reference.sun_normal_samples},
                     {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
                     {"check_convergence", report.reference.check_convergence}};
@@ -713,6 +718,7 @@ Report report_from_json(const std::string& json_text) {
   if (j.contains("reference")) {
     const ojson& jr = j.at("reference");
     report.reference.pixel_samples = jr.at("pixel_samples");
+    report.reference.pixel_samples_without_sun = jr.value("pixel_samples_without_sun", 0);
     report.reference.sun_normal_samples = jr.at("sun_normal_samples");
     report.reference.sun_cells_per_wavelength = get_number(jr.at("sun_cells_per_wavelength"));
     report.reference.check_convergence = jr.at("check_convergence");

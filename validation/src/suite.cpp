@@ -329,15 +329,19 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     const json& r = doc["reference"];
     if (!r.is_object())
       fail(source, "reference",
-           "an object {\"pixel_samples\", \"sun_normal_samples\", "
-           "\"sun_cells_per_wavelength\", \"check_convergence\"}",
+           "an object {\"pixel_samples\", \"pixel_samples_without_sun\", "
+           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"check_convergence\"}",
            describe(r));
     static constexpr std::string_view kReferenceKeys[] = {
-        "pixel_samples", "sun_normal_samples", "sun_cells_per_wavelength", "check_convergence"};
+        "pixel_samples", "pixel_samples_without_sun", "sun_normal_samples",
+        "sun_cells_per_wavelength", "check_convergence"};
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
       suite.reference.pixel_samples =
           integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1, 4096);
+    if (r.contains("pixel_samples_without_sun"))
+      suite.reference.pixel_samples_without_sun = integer_at(
+          r["pixel_samples_without_sun"], source, "reference.pixel_samples_without_sun", 1, 4096);
     if (r.contains("sun_normal_samples"))
       suite.reference.sun_normal_samples =
           integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);

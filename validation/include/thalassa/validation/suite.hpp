@@ -81,6 +81,10 @@ struct FlickerSettings {
 // largest change of a row's total (it must stay below 1%).
 struct ReferenceSettings {
   int pixel_samples = 16;  // samples per pixel, [1, 4096]
+  // The same for the terms without the sun (sky, sea, air), which cost a small fraction of the
+  // sun's reference per sample and converge more slowly per sample than it costs to take more;
+  // 0: pixel_samples.
+  int pixel_samples_without_sun = 0;
   // Normal samples per pixel for the sun's disc, [1, 65536]: the reference's sun integrates over
   // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
   // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun.glsl), each at most the shortest
