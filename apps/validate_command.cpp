@@ -227,7 +227,8 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
       ->add_option("--reference-samples", args.reference_samples,
                    "The reference's most samples per pixel, instead of the suite's "
                    "reference.pixel_samples (it doubles them from 16 while a row's total changes "
-                   "by 1% or more; a machine with a GPU affords 1024 and more)")
+                   "by 1% or more; a machine with a GPU affords 1024 and more); the terms without "
+                   "the sun keep reference.pixel_samples_without_sun where it is larger")
       ->check(CLI::Range(1, 4096));
 }
 
@@ -269,7 +270,14 @@ int run_validate(const ValidateArgs& args) {
         args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
     suite_cases = static_cast<int>(suite.cases.size());
     select_cases(suite, args.cases);
-    if (args.reference_samples > 0) suite.reference.pixel_samples = args.reference_samples;
+    if (args.reference_samples > 0) {
+      // The terms with the sun take N; those without keep their own cap where it is larger.
+      validation::ReferenceSettings& reference = suite.reference;
+      if (reference.pixel_samples_without_sun > 0)
+        reference.pixel_samples_without_sun =
+            std::max(reference.pixel_samples_without_sun, args.reference_samples);
+      reference.pixel_samples = args.reference_samples;
+    }
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;

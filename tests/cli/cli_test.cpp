@@ -297,6 +297,16 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(reference_terms[1]["samples"], 8);  // sky
   EXPECT_EQ(reference_terms[2]["samples"], 2);  // all
   EXPECT_EQ(results["cases"][0]["methods"][1]["terms"][0]["samples"], 1);  // full's
+  // Above the sky's own cap, --reference-samples raises it too (the sky alone: cheap).
+  write("sky.json", R"({"suite": "sky", "base": {"image.width": 24, "image.height": 16},
+    "methods": ["reference"], "terms": ["sky"], "flicker": {"frames": 1, "terms": ["sky"]},
+    "reference": {"pixel_samples": 4, "pixel_samples_without_sun": 8},
+    "cases": [{"name": "near", "set": {}}]})");
+  ASSERT_EQ(run("validate sky.json -o report16 --reference-samples 16").status, 0);
+  std::ifstream in16(dir_ / "report16" / "results.json");
+  const auto results16 = nlohmann::json::parse(in16);
+  EXPECT_EQ(results16["reference"]["pixel_samples_without_sun"], 16);
+  EXPECT_EQ(results16["cases"][0]["methods"][0]["terms"][0]["samples"], 16);
   // The reference says on how many rows its sun resolved every wave: 2 cm waves seen from 100 m
   // at 24 x 16 are resolved on no sea row (only the sky's rows count as resolved), so no row is
   // compared and the sun's ratio plot says so instead of failing.
