@@ -150,14 +150,10 @@ class CaseRunner {
     const std::string problem = parse_terms(validation::terms_option(term), options.terms);
     if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
     const validation::ReferenceSettings& reference = suite_.reference;
-    const int most = options.terms.sun || reference.pixel_samples_without_sun <= 0
-                         ? reference.pixel_samples
-                         : reference.pixel_samples_without_sun;
+    const int most = reference.max_samples(options.terms.sun);
     options.reference.max_samples = most;
     options.reference.min_samples = std::min(options.reference.min_samples, most);
-    // The sun's normal samples per pixel: cells of its footprint, round(sqrt(n)) per side.
-    options.reference.sun_cells =
-        std::max(1, int(std::lround(std::sqrt(double(reference.sun_normal_samples)))));
+    options.reference.sun_cells = reference.sun_cells();
     options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
     const bool over_time = suite_.flicker.frames >= 2 &&
                            std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),

@@ -506,7 +506,7 @@ std::string index_html(const Report& report,
        ", doubling from 16 while a row's total changes by 1 % or more; its "
        "sun in cells of at most 1/" + short_number(report.reference.sun_cells_per_wavelength) +
        " of the shortest wavelength, at most " +
-       std::to_string(int(std::lround(std::sqrt(double(report.reference.sun_normal_samples))))) +
+       std::to_string(report.reference.sun_cells()) +
        " per pixel side.</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +

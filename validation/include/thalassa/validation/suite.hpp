@@ -10,6 +10,8 @@
 // method only: the reference of a case is always its scene without them.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -92,6 +94,16 @@ struct ReferenceSettings {
   int sun_normal_samples = 65536;
   double sun_cells_per_wavelength = 16.0;
   bool check_convergence = false;
+
+  // The most samples per pixel of a term with the sun or without it.
+  int max_samples(bool with_sun) const {
+    return with_sun || pixel_samples_without_sun <= 0 ? pixel_samples : pixel_samples_without_sun;
+  }
+  // The sun's cells per pixel side: round(sqrt(sun_normal_samples)), at least 1
+  // (ReferenceSampling::sun_cells).
+  int sun_cells() const {
+    return std::max(1, static_cast<int>(std::lround(std::sqrt(double(sun_normal_samples)))));
+  }
 };
 
 struct Suite {
