@@ -37,6 +37,9 @@ bool all_finite(const Image& image) {
 // first) and the frame time of frame 0.
 struct Rendered {
   std::vector<Image> frames;
+  // What the metrics compare, per frame: the frames themselves, or for the reference the
+  // frames with each sea pixel's sea alone (validation::reference_for_comparison).
+  std::vector<Image> compared;
   RenderStats stats;
 };
 
@@ -94,7 +97,11 @@ class CaseRunner {
       m.method = method->method;
       m.plain = method->plain();
       for (const std::string& term : suite_.terms) {
-        const Rendered rendered = render_term(c, *method, scene, term);
+        Rendered rendered = render_term(c, *method, scene, term);
+        if (method == reference)
+          for (std::size_t k = 0; k < rendered.compared.size(); ++k)
+            rendered.compared[k] = validation::reference_for_comparison(
+                rendered.frames[k], rendered.compared[k], view.sea_mask());
         if (!std::all_of(rendered.frames.begin(), rendered.frames.end(), all_finite)) {
           result.exit_status = kExitRuntimeFailure;
           result.message = method->name + ", " + term + ": a pixel is not finite";
@@ -127,13 +134,14 @@ class CaseRunner {
           // Only the rows where the reference's sun is resolved (all rows without the sun).
           const validation::PixelMask compared = validation::resolved_rows_mask(
               view.sea_mask(), ref->second.stats.resolved_rows, validation::kResolvedRowFraction);
-          t.metrics = validation::compare_images(
-              rendered.frames.front(), ref->second.frames.front(), view, suite_.horizon, &compared);
+          const std::vector<Image>& against = ref->second.compared;
+          t.metrics = validation::compare_images(rendered.compared.front(), against.front(), view,
+                                                 suite_.horizon, &compared);
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
-            if (ref->second.frames.size() == rendered.frames.size())
+            if (against.size() == rendered.frames.size())
               t.temporal_error =
-                  validation::temporal_error(rendered.frames, ref->second.frames, compared);
+                  validation::temporal_error(rendered.compared, against, compared);
           }
         }
         m.terms.push_back(std::move(t));
@@ -167,6 +175,11 @@ class CaseRunner {
       Renderer renderer(context_, s, options);
       renderer.render();
       rendered.frames.push_back(renderer.image());
+      // The reference's sea alone (its pixels merged with image()'s by render_case); other
+      // methods compare as drawn.
+      rendered.compared.push_back(options.method == ocean::OceanMethod::reference
+                                      ? renderer.reference_sea_image()
+                                      : rendered.frames.back());
       if (k == 0) rendered.stats = renderer.stats();
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

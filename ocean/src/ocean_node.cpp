@@ -82,6 +82,7 @@ class OceanNode final : public gl::Node {
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sky && options_.sky_shrm) lighting_defines["SKY_SHRM"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
+    if (options_.method == OceanMethod::reference) lighting_defines["METHOD_REFERENCE"] = "1";
     if (reference_sun()) lighting_defines["REFERENCE_SUN"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
@@ -248,8 +249,10 @@ class OceanNode final : public gl::Node {
     normal_texture_ = gl::make_texture(GL_TEXTURE_2D);
     variance_texture_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(normal_texture_.get(), 1, GL_RGBA32F, target.width(), target.height());
-    // The reference's sun adds two channels (its integrated sun and whether it was resolved).
-    glTextureStorage2D(variance_texture_.get(), 1, reference_sun() ? GL_RGBA32F : GL_RG32F,
+    // The reference's samples carry their weight, their sun and whether it was resolved
+    // (ocean_geometry.frag).
+    glTextureStorage2D(variance_texture_.get(), 1,
+                       options_.method == OceanMethod::reference ? GL_RGBA32F : GL_RG32F,
                        target.width(), target.height());
     gbuffer_ = gl::make_framebuffer();
     glNamedFramebufferTexture(gbuffer_.get(), GL_COLOR_ATTACHMENT0, normal_texture_.get(), 0);

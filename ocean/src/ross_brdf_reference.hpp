@@ -1,6 +1,7 @@
 // Double-precision CPU reference of the Ross et al. ocean BRDF and its lighting terms: the
 // functions of shaders/ocean/ross_brdf.glsl (and, through it, shaders/ocean/smith.glsl) and of
-// shaders/ocean/cell_slope_density.glsl (the reference method's per-cell sun) compiled as C++
+// shaders/ocean/cell_slope_density.glsl (the reference method's per-cell sun) and
+// shaders/ocean/visible_area_weight.glsl (the weight of its samples) compiled as C++
 // (Number = double, vec2/vec3 = glm::dvec2/dvec3) in namespace thalassa::glsl, e.g.
 // thalassa::glsl::OceanRossBrdf(v, l, slope_variance, fresnel_r). Frames (the tangent frame:
 // x along the wind, y across, z the mean normal), units and sources are documented in the .glsl
@@ -22,6 +23,7 @@ namespace thalassa::glsl {
 namespace {
 #include "ocean/ross_brdf.glsl"
 #include "ocean/cell_slope_density.glsl"
+#include "ocean/visible_area_weight.glsl"
 }  // namespace
 }  // namespace thalassa::glsl
 #pragma GCC diagnostic pop

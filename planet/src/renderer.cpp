@@ -234,15 +234,37 @@ struct Renderer::Impl {
   // of round k / s^2, and the sample counts are whole rounds (multiples of s^2), so that every
   // stratum has as many samples and the average is a box filter over the pixel. The reference's
   // sun integrates over the sample's stratum (shaders/ocean/reference_sun.glsl).
+  //
+  // A pixel's samples of the sky count as they fall (its coverage); its samples of the sea are
+  // averaged with their visible-area weights (shaders/ocean/visible_area_weight.glsl), which the
+  // sea's alpha carries (ocean_lighting.frag): pixel = (sum of sky samples + n_sea x
+  // sum(w L) / sum(w)) / samples.
   double draw_reference(int max_samples) {
     const int width = target.width(), height = target.height();
-    std::vector<double> sum(std::size_t(width) * height * 4, 0.0);
+    struct PixelSums {
+      glm::dvec3 sky{0.0};       // sum of the sky's samples
+      glm::dvec3 weighted{0.0};  // sum of w L over the sea's samples
+      glm::dvec3 plain{0.0};     // sum of L over the sea's samples (where every w is 0)
+      double weight = 0.0;       // sum of w
+      int sea = 0;               // the sea's samples
+      int resolved = 0;          // samples whose sun resolved every wave (the sky's count)
+      // The sea's samples averaged with their weights (0 without any).
+      glm::dvec3 sea_mean() const {
+        return weight > 0.0 ? weighted / weight
+               : sea > 0    ? plain / double(sea)
+                            : glm::dvec3(0.0);
+      }
+      glm::dvec3 mean(int count) const {
+        return (sky + double(sea) * sea_mean()) / double(count);
+      }
+    };
+    std::vector<PixelSums> sums(std::size_t(width) * height);
     auto row_totals = [&](int count) {
       std::vector<double> totals(height, 0.0);
       for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-          const double* p = &sum[(std::size_t(y) * width + x) * 4];
-          totals[y] += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / count;
+          const glm::dvec3 p = sums[std::size_t(y) * width + x].mean(count);
+          totals[y] += 0.2126 * p.r + 0.7152 * p.g + 0.0722 * p.b;
         }
       return totals;
     };
@@ -269,7 +291,24 @@ struct Renderer::Impl {
         inputs.pixel_stratum = 1.0 / strata;
         ms += draw_frame();
         const std::vector<float> rgba = target.read_rgba_top_down();
-        for (std::size_t i = 0; i < sum.size(); ++i) sum[i] += rgba[i];
+        for (std::size_t i = 0; i < sums.size(); ++i) {
+          const float* p = &rgba[4 * i];
+          const glm::dvec3 radiance(p[0], p[1], p[2]);
+          PixelSums& sum = sums[i];
+          const double code = std::abs(double(p[3]));
+          if (code >= kReferenceSeaAlpha) {
+            // The shader's weight is finite for finite input; a sample that is not counts as 0.
+            const double w = std::isfinite(code) ? code - kReferenceSeaAlpha : 0.0;
+            sum.weighted += w * radiance;
+            sum.plain += radiance;
+            sum.weight += w;
+            ++sum.sea;
+            if (p[3] > 0.0f) ++sum.resolved;
+          } else {
+            sum.sky += radiance;
+            ++sum.resolved;
+          }
+        }
       }
       const std::vector<double> totals = row_totals(count);
       if (!half_totals.empty()) {
@@ -287,23 +326,41 @@ struct Renderer::Impl {
     inputs.pixel_offset = glm::dvec2(0.0);
     inputs.pixel_stratum = 1.0;
     samples = count;
-    std::vector<float> average(sum.size());
-    for (std::size_t i = 0; i < sum.size(); ++i) average[i] = float(sum[i] / count);
-    // With the reference's sun, alpha is 1 where its sun resolved every wave and 0 where not
-    // (ocean_lighting.frag): each row's mean, then alpha back to 1 like every other image's.
+    std::vector<float> average(sums.size() * 4);
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      const glm::dvec3 p = sums[i].mean(count);
+      average[4 * i + 0] = float(p.r);
+      average[4 * i + 1] = float(p.g);
+      average[4 * i + 2] = float(p.b);
+      average[4 * i + 3] = 1.0f;  // like every other image's
+    }
+    // With the reference's sun, each row's fraction of samples whose sun resolved every wave.
     resolved_rows.clear();
     if (renderer_options.terms.sun) {
       resolved_rows.assign(height, 0.0);
       for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x)
-          resolved_rows[y] += sum[(std::size_t(y) * width + x) * 4 + 3] / count;
+          resolved_rows[y] += double(sums[std::size_t(y) * width + x].resolved) / count;
         resolved_rows[y] /= width;
       }
     }
-    for (std::size_t i = 3; i < average.size(); i += 4) average[i] = 1.0f;
     target.write_rgba_top_down(average);
+    sea_rgba.assign(sums.size() * 4, 0.0f);
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      const PixelSums& p = sums[i];
+      if (p.sea == 0) continue;
+      const glm::dvec3 sea = p.sea_mean();
+      sea_rgba[4 * i + 0] = float(sea.r);
+      sea_rgba[4 * i + 1] = float(sea.g);
+      sea_rgba[4 * i + 2] = float(sea.b);
+      sea_rgba[4 * i + 3] = float(double(p.sea) / count);
+    }
     return ms;
   }
+
+  // The reference's sea samples write |alpha| >= this (shaders/ocean/ocean_lighting.frag,
+  // REFERENCE_SEA_ALPHA: 2 + the sample's weight), every other pass 1.
+  static constexpr double kReferenceSeaAlpha = 2.0;
 
   // Rows whose total is below this fraction of the brightest row's do not count in the
   // reference's convergence test: a row the sun's glint barely touches (1e-12 of the brightest
@@ -322,6 +379,7 @@ struct Renderer::Impl {
   int samples = 1;
   double sample_row_change = 0.0;
   std::vector<double> resolved_rows;
+  std::vector<float> sea_rgba;  // Renderer::reference_sea_image's pixels, top row first
 };
 
 Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions options)
@@ -361,6 +419,16 @@ Image Renderer::image() const {
   image.width = impl_->target.width();
   image.height = impl_->target.height();
   image.rgba = impl_->target.read_rgba_top_down();
+  return image;
+}
+
+Image Renderer::reference_sea_image() const {
+  Image image;
+  if (impl_->renderer_options.method != ocean::OceanMethod::reference || impl_->sea_rgba.empty())
+    return image;
+  image.width = impl_->target.width();
+  image.height = impl_->target.height();
+  image.rgba = impl_->sea_rgba;
   return image;
 }
 

@@ -18,6 +18,11 @@
 // size there, m.
 layout(location = 0) in vec4 rest_and_cell;
 out vec3 rest_position;  // m, interpolated for the per-pixel normals of the fragment shader
+#ifdef METHOD_REFERENCE
+// m, nadir frame: the displaced point, whose screen derivatives give the rasterised triangle's
+// area for the reference's sample weights (ocean/visible_area_weight.glsl).
+out vec3 mesh_position;
+#endif
 
 // Two vec4 per wave, longest first (see ocean.frag).
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
@@ -58,4 +63,7 @@ void main() {
   const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
   gl_Position = FrameClipPosition(d, OCEAN_NEAR_PLANE);
   rest_position = x;
+#ifdef METHOD_REFERENCE
+  mesh_position = p;
+#endif
 }

@@ -28,9 +28,15 @@
 layout(early_fragment_tests) in;
 #else
 in vec3 rest_position;  // m, on the sea at rest, nadir frame (ocean.vert)
+#ifdef METHOD_REFERENCE
+in vec3 mesh_position;  // m, the rasterised (displaced) triangle's point, nadir frame (ocean.vert)
+#endif
 #endif
 layout(location = 0) out vec4 normal_out;    // xyz: unit normal, east-north-up; w: 1 (coverage)
-layout(location = 1) out vec4 variance_out;  // xy: slope variance along, across the wind
+// xy: slope variance along, across the wind. METHOD_REFERENCE (a mirror, no variance): x the
+// sample's visible-area weight (ocean/visible_area_weight.glsl), y 1 where the reference's sun
+// resolved every wave (or has no sun) else 0, z the sun it reflects (ocean/reference_sun.glsl).
+layout(location = 1) out vec4 variance_out;
 
 // Two vec4 per wave, longest first: (direction east, direction north, |k| rad/m, h m) and
 // (wrapped phase rad, wavelength m, unused, unused). See ocean/src/ocean_node.cpp.
@@ -54,6 +60,9 @@ uniform float resolved_wave_scale;
 // method's in the image's foreground (ocean/method.hpp).
 uniform vec2 constant_variance;
 #endif
+#ifdef METHOD_REFERENCE
+#include "ocean/visible_area_weight.glsl"
+#endif
 #if defined(METHOD_REFERENCE) && defined(REFERENCE_SUN)
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_sun.glsl"
@@ -74,6 +83,15 @@ void main() {
   const vec3 x_dx = dFdx(x);
   const vec3 x_dy = dFdy(x);
   const float footprint = max(max(length(x_dx), length(x_dy)), 1e-6);
+#ifdef METHOD_REFERENCE
+  // The rasterised surface's screen derivatives (m per pixel), for the sample's weight; the
+  // backstop's surface is the sea at rest itself.
+#ifdef BACKSTOP
+  const vec3 mesh_dx = x_dx, mesh_dy = x_dy;
+#else
+  const vec3 mesh_dx = dFdx(mesh_position), mesh_dy = dFdy(mesh_position);
+#endif
+#endif
 #ifdef BACKSTOP
   if (distance < 0.0) discard;  // the sky's pixel
 #endif
@@ -121,7 +139,8 @@ void main() {
 #endif
   const vec3 v = -ray;  // toward the eye
   // The normal in the tangent frame of the sea at rest at x, turned into the nadir frame.
-  const vec3 n_local = normalize(cross(d_dx, d_dy));
+  const vec3 area_local = cross(d_dx, d_dy);  // displaced area per unit rest area
+  const vec3 n_local = normalize(area_local);
   vec3 n = FrameSeaTangentFrame(x) * n_local;
   // Sec. 3.2: a normal facing away from the viewer is reflected back toward it.
   if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
@@ -142,12 +161,20 @@ void main() {
   const vec2 slope_dy = dFdy(wind_slope);
   const vec2 pixel_variance =
       min((slope_dx * slope_dx + slope_dy * slope_dy) / 12.0, vec2(ANTIALIAS_MAX_VARIANCE));
-#if defined(METHOD_REFERENCE) && defined(REFERENCE_SUN)
-  // A mirror for the sky; z: the sun reflected by the pixel's footprint, resolved cell by cell
-  // (ocean/reference_sun.glsl), w: 1 where its cells resolve every wave.
-  variance_out =
-      vec4(0.0, 0.0, ReferenceReflectedSun(x, x_dx, x_dy, v, FrameSunDirection(), downwind));
-#elif defined(METHOD_REFERENCE) || defined(METHOD_NORMALS)
+#ifdef METHOD_REFERENCE
+  // A mirror for the sky and the refracted light, weighted by the visible area of the facet it
+  // samples (the renderer's draw_reference averages a pixel's sea samples with it); the sun
+  // reflected by the sample's stratum of the pixel, resolved cell by cell.
+  const float weight = OceanReferenceVisibleWeight(FrameSeaTangentFrame(x) * area_local,
+                                                   cross(x_dx, x_dy), cross(mesh_dx, mesh_dy), v);
+#ifdef REFERENCE_SUN
+  const vec2 sun_and_resolved =
+      ReferenceReflectedSun(x, x_dx, x_dy, v, FrameSunDirection(), downwind);
+#else
+  const vec2 sun_and_resolved = vec2(0.0, 1.0);
+#endif
+  variance_out = vec4(weight, sun_and_resolved.y, sun_and_resolved.x, 0.0);
+#elif defined(METHOD_NORMALS)
   // A mirror: no BRDF width (the sun term keeps its disc's, ocean/ross_brdf.glsl).
   variance_out = vec4(0.0);
 #elif defined(METHOD_BASIC)

@@ -28,7 +28,13 @@ uniform float sky_array_weight;
 layout(location = 0) out vec4 radiance;  // W m^-2 sr^-1 nm^-1, RGB at 680, 550, 440 nm
 
 layout(binding = 0) uniform sampler2D normals;    // xyz normal, w coverage (ocean_geometry)
-layout(binding = 1) uniform sampler2D variances;  // xy slope variance along, across the wind
+// xy slope variance along, across the wind (METHOD_REFERENCE: see ocean_geometry.frag)
+layout(binding = 1) uniform sampler2D variances;
+#ifdef METHOD_REFERENCE
+// The reference's sea samples write |alpha| = this + their weight >= 0; every other pass writes
+// alpha 1 (planet/src/renderer.cpp, kReferenceSeaAlpha, reads it).
+const float REFERENCE_SEA_ALPHA = 2.0;
+#endif
 uniform vec2 downwind;                // unit, east-north-up
 uniform float fresnel_r;              // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;        // irradiance reflectance of the water body, per channel
@@ -70,7 +76,13 @@ void main() {
   if (normal.w == 0.0) discard;  // not the sea: the sky pass's pixel
   const vec3 n = vec3(normal.x, normal.y, normal.z);
   const vec4 variance = texelFetch(variances, pixel, 0);
+#ifdef METHOD_REFERENCE
+  // A mirror; the channels hold the sample's weight, the sun and whether it was resolved
+  // (ocean_geometry.frag).
+  const vec2 slope_variance = vec2(0.0);
+#else
   const vec2 slope_variance = vec2(variance.x, variance.y);
+#endif
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
   const vec3 v = -ray;  // toward the eye
   const vec3 wind = vec3(downwind, 0.0);
@@ -147,10 +159,14 @@ void main() {
 #ifndef AIR_TERM
   in_scattered = vec3(0.0);
 #endif
-#ifdef REFERENCE_SUN
-  // Alpha carries whether the reference's sun resolved every wave here (Renderer's
-  // draw_reference turns it into each row's resolved fraction and restores alpha to 1).
-  radiance = vec4(sea * transmittance + in_scattered, variance.w);
+#ifdef METHOD_REFERENCE
+  // Alpha tells the reference's sea samples from the sky's (alpha 1): |alpha| = 2 + the sample's
+  // visible-area weight, negative where the reference's sun did not resolve every wave. The
+  // Renderer's draw_reference averages each pixel's sea samples with these weights, turns the
+  // signs into each row's resolved fraction and restores alpha to 1.
+  const float sample_code = REFERENCE_SEA_ALPHA + variance.x;
+  radiance = vec4(sea * transmittance + in_scattered,
+                  variance.y > 0.5 ? sample_code : -sample_code);
 #else
   radiance = vec4(sea * transmittance + in_scattered, 1.0);
 #endif

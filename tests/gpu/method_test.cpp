@@ -64,6 +64,65 @@ TEST(OceanMethods, ReferenceSkyAndSeaConverge) {
   for (float v : reference.image.rgba) ASSERT_TRUE(std::isfinite(v));
 }
 
+// The reference's sea alone (Renderer::reference_sea_image), which the validation compares with
+// the other methods at the pixels the horizon crosses: none of the sky's pixels saw the sea, all
+// of the foreground's did and there it is the image itself; the pixels the horizon crosses are
+// the image's mix of it and the sky, which, taken apart, is the sky of the pixel above to within
+// the sky's change over a pixel. The other methods have none.
+TEST(OceanMethods, ReferenceSeaImageIsThePixelsSeaAlone) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.image.width = 48;
+  scene.image.height = 32;
+  // The horizon, 0.32 degrees below the horizontal, through the middle of row 11 (4.31 degrees
+  // above the view's centre): the strata's samples fall on both sides of it.
+  scene.camera.pitch = -4.63;
+  RendererOptions options;
+  options.method = ocean::OceanMethod::reference;
+  options.terms = {false, false, true, false};  // the refracted light: cheap, no sun
+  options.reference.min_samples = 16;
+  options.reference.max_samples = 16;
+  Renderer renderer(*context, scene, options);
+  renderer.render();
+  const Image image = renderer.image();
+  const Image sea = renderer.reference_sea_image();
+  ASSERT_EQ(sea.width, image.width);
+  ASSERT_EQ(sea.height, image.height);
+  const int w = image.width, h = image.height;
+  int mixed = 0;
+  double worst_sky = 0.0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float* p = image.pixel(x, y);
+      const float* s = sea.pixel(x, y);
+      const float coverage = s[3];
+      ASSERT_GE(coverage, 0.0f);
+      ASSERT_LE(coverage, 1.0f);
+      if (y < 4) EXPECT_EQ(coverage, 0.0f) << x << ", " << y;  // 2.5 degrees above the horizon
+      if (y >= h - 4) {
+        EXPECT_EQ(coverage, 1.0f) << x << ", " << y;
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(s[c], p[c], 1e-6 * std::abs(p[c])) << x << ", " << y;
+      }
+      if (coverage > 0.0f && coverage < 1.0f && y > 0 && sea.pixel(x, y - 1)[3] == 0.0f) {
+        ++mixed;
+        // The pixel's sky: what the image holds beyond its sea's share.
+        const double sky = (p[1] - coverage * s[1]) / (1.0 - coverage);
+        const double above = image.pixel(x, y - 1)[1];
+        worst_sky = std::max(worst_sky, std::abs(sky / above - 1.0));
+      }
+    }
+  std::printf("%d pixels the horizon crosses: their sky within %.3g of the pixel above's\n", mixed,
+              worst_sky);
+  EXPECT_GE(mixed, w / 2);
+  EXPECT_LT(worst_sky, 0.2);
+  RendererOptions full;
+  full.terms = options.terms;
+  Renderer other(*context, scene, full);
+  other.render();
+  EXPECT_EQ(other.reference_sea_image().width, 0);
+  EXPECT_TRUE(other.reference_sea_image().rgba.empty());
+}
+
 // Fig. 10's basic method keeps the full method's BRDF of the foreground everywhere: where the
 // foreground resolves no wave (8 km up, waves of at most 30 m) the two are the same image, and
 // where it resolves some (100 m) the basic method's farther pixels lack the variance of the waves

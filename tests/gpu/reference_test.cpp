@@ -311,6 +311,29 @@ TEST_F(ReferenceTest, CellSlopeDensityAndSunMatchDoubleReference) {
   }
 }
 
+// The weight of the reference's sea samples (ocean/visible_area_weight.glsl) on the GPU against
+// its double reference: facets of slopes up to 0.5 seen from every direction above the sea, on a
+// triangle tilted toward the eye, one nearly edge-on (the clamp) and the sea at rest.
+TEST_F(ReferenceTest, ReferenceSampleWeightMatchesDoubleReference) {
+  for (const glm::dvec4 triangle : {glm::dvec4(0.3, -0.1, 0.9, 1.0), glm::dvec4(0.0, 1e3, 1.0, 2.5e3),
+                                    glm::dvec4(0.0, 0.0, -4e-4, 5e-4)}) {
+    const glm::dvec4 t = glm::dvec4(glm::vec4(triangle));  // as the GPU sees it
+    const glm::dvec3 mesh(t.x, t.y, t.z), rest(0.0, 0.0, t.w);
+    const double worst = compare(evaluate(12, sun_at(0.0), glm::dvec2(0.0), {}, t), 2,
+                                 [&](const glm::dvec3& v) {
+                                   const glm::dvec3 up_v = glm::normalize(
+                                       glm::dvec3(v.x, v.y, std::abs(v.z) + 0.05));
+                                   const glm::dvec3 surface(-0.5 * v.x, -0.5 * v.y, 1.0);
+                                   return glm::dvec4(
+                                       glsl::OceanReferenceVisibleWeight(surface, rest, mesh, up_v),
+                                       glsl::OceanReferenceVisibleWeight(surface, rest, rest, up_v),
+                                       0.0, 1.0);
+                                 });
+    std::printf("sample weight, triangle (%g, %g, %g), rest %g: worst %.3g\n", t.x, t.y, t.z, t.w,
+                worst);
+  }
+}
+
 // The rest of the ocean's shader functions (issue 3, point 6): the slope pdf p, the visible-slope
 // pdfs q_vn and q_vn^e, the filter weight w, the sky-map mapping U and its derivatives, and the
 // trochoid slope variance, over the grid of directions (see evaluate.frag, FUNCTION 8-10).

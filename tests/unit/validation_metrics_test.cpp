@@ -351,5 +351,34 @@ TEST(ValidationMetrics, ResolvedRowsMaskKeepsOnlyResolvedRows) {
   EXPECT_THROW(resolved_rows_mask(mask, {1.0, 1.0}, 0.99), std::invalid_argument);
 }
 
+// The reference compared with the other methods: its sea alone where the pixel's centre sees
+// the sea and some of its samples did, its whole pixel elsewhere; itself without a sea image;
+// images of other sizes refused.
+TEST(ValidationMetrics, ReferenceForComparisonTakesTheSeaAloneAtSeaPixels) {
+  Image reference{3, 2, std::vector<float>(3 * 2 * 4, 1.0f)};
+  Image sea{3, 2, std::vector<float>(3 * 2 * 4, 0.0f)};
+  const auto set = [](Image& image, int x, int y, float value, float alpha) {
+    float* p = image.pixel(x, y);
+    p[0] = p[1] = p[2] = value;
+    p[3] = alpha;
+  };
+  set(sea, 0, 1, 0.25f, 1.0f);    // all sea
+  set(sea, 1, 1, 0.5f, 0.375f);   // the horizon crosses it: 3 of 8 samples saw the sea
+  set(sea, 1, 0, 0.75f, 0.125f);  // its centre sees the sky, one sample a crest
+  // (2, 1): its centre sees the sea, none of its samples did (alpha 0)
+  PixelMask mask = PixelMask::all(3, 2);
+  for (int x = 0; x < 3; ++x) mask.inside[x] = 0;  // the top row's centres see the sky
+  const Image out = reference_for_comparison(reference, sea, mask);
+  EXPECT_EQ(out.pixel(0, 1)[1], 0.25f);
+  EXPECT_EQ(out.pixel(1, 1)[1], 0.5f);
+  EXPECT_EQ(out.pixel(1, 0)[1], 1.0f);
+  EXPECT_EQ(out.pixel(2, 1)[1], 1.0f);
+  EXPECT_EQ(out.pixel(0, 0)[1], 1.0f);
+  EXPECT_EQ(reference_for_comparison(reference, Image{}, mask).rgba, reference.rgba);
+  EXPECT_THROW(
+      reference_for_comparison(reference, Image{2, 2, std::vector<float>(16, 0.0f)}, mask),
+      std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace thalassa::validation

@@ -364,4 +364,19 @@ PixelMask resolved_rows_mask(const PixelMask& mask, const std::vector<double>& r
   return out;
 }
 
+Image reference_for_comparison(const Image& reference, const Image& sea,
+                               const PixelMask& sea_mask) {
+  if (sea.width == 0 && sea.height == 0) return reference;
+  check_same_size(sea, reference, "reference_for_comparison");
+  check_mask(reference, sea_mask, "reference_for_comparison");
+  Image out = reference;
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const std::size_t i = (static_cast<std::size_t>(y) * out.width + x) * 4;
+      if (!sea_mask(x, y) || !(sea.rgba[i + 3] > 0.0f)) continue;
+      for (int c = 0; c < 3; ++c) out.rgba[i + c] = sea.rgba[i + c];
+    }
+  return out;
+}
+
 }  // namespace thalassa::validation

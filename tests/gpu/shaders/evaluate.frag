@@ -7,12 +7,15 @@
 #endif
 #include "ocean/ross_brdf.glsl"
 #include "ocean/cell_slope_density.glsl"
+#include "ocean/visible_area_weight.glsl"
 #include "ocean/trochoids.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
 uniform vec3 sun_dir;         // unit, east-north-up
 uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
-// FUNCTION 11: a cell's slope-space edges d_u (xy) and d_v (zw), tangent frame.
+// FUNCTION 11: a cell's slope-space edges d_u (xy) and d_v (zw), tangent frame. FUNCTION 12: a
+// rasterised triangle's area vector per pixel (xyz, m^2) and the sea at rest's area per pixel
+// (w, m^2, vertical).
 uniform vec4 cell_edges;
 // FUNCTION 6 and 7: the wave set as the ocean node packs it (two vec4 per wave) and the local
 // position (m, relative to the frame's origin) in the input texel's xy.
@@ -62,6 +65,14 @@ void main() {
                                       sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE)),
                 OceanCellReflectedSun(up_v, sun_dir, vec2(v.x, v.y) * 0.05, d_u, d_v, 0.02), 0.0,
                 1.0);
+#elif FUNCTION == 12
+  // The reference's sample weight (ocean/visible_area_weight.glsl) of the facet of slopes
+  // v.xy / 2 seen toward up_v, on the triangle of cell_edges.xyz and on the sea at rest itself.
+  const vec3 up_v = normalize(vec3(v.x, v.y, abs(v.z) + 0.05));
+  const vec3 surface = vec3(-0.5 * v.x, -0.5 * v.y, 1.0);
+  const vec3 rest = vec3(0.0, 0.0, cell_edges.w);
+  result = vec4(OceanReferenceVisibleWeight(surface, rest, cell_edges.xyz, up_v),
+                OceanReferenceVisibleWeight(surface, rest, rest, up_v), 0.0, 1.0);
 #elif FUNCTION == 9 || FUNCTION == 10
   // The sky-map mapping U at zeta = 0 and its derivatives (eq. 27) for a view above the
   // surface, in a tangent frame tilted from the vertical; and Appendix A's slope variance.

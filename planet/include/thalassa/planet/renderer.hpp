@@ -128,6 +128,13 @@ class Renderer {
   void render();
   // The last frame: linear radiance, rows top first.
   Image image() const;
+  // The reference method (after render()): each pixel's sea alone, the weighted mean of its
+  // samples that saw the sea (the sky's left out), with alpha the fraction of its samples that
+  // did; black with alpha 0 where none did. A pixel the horizon crosses is sky and sea in
+  // image(), as a photograph's is; the other methods shade the one at its centre, and the
+  // validation compares their sea with this (validation::reference_for_comparison). An empty
+  // image (0 x 0) for the other methods.
+  Image reference_sea_image() const;
   // GL names of the HDR colour texture (RGBA32F) and its framebuffer, for host applications.
   unsigned hdr_texture() const;
   unsigned hdr_framebuffer() const;

@@ -210,4 +210,14 @@ TermMetrics compare_images(const Image& method, const Image& reference, const Vi
 PixelMask resolved_rows_mask(const PixelMask& mask, const std::vector<double>& resolved_rows,
                              double min_fraction);
 
+// The reference image the other methods are measured against: `reference` (Renderer::image,
+// each pixel's samples of sky and sea averaged over the pixel) where the pixel's centre sees the
+// sky or where none of its samples saw the sea, and its sea alone (`sea`, Renderer::
+// reference_sea_image: alpha the fraction of samples that saw the sea) where the pixel's centre
+// sees the sea (`sea_mask`, ViewGeometry::sea_mask). The other methods shade the sea at a sea
+// pixel's centre, so at the pixels the horizon crosses the box-filtered reference would measure
+// the sky's share of the pixel, not their sea (stop 16 saw it as the sea term's relative RMS of
+// 0.99 for every method). `sea` empty (0 x 0): `reference` itself.
+Image reference_for_comparison(const Image& reference, const Image& sea, const PixelMask& sea_mask);
+
 }  // namespace thalassa::validation
