@@ -82,23 +82,48 @@ class CaseRunner {
   void render_case(const SuiteCase& c, const Scene& base_scene, CaseResult& result) {
     const validation::ViewGeometry view(base_scene);
     const SuiteMethod* reference = suite_.reference_method();
-    // The reference first: every other method is measured against its images.
-    std::map<std::string, Rendered> reference_images;
-    std::vector<const SuiteMethod*> order;
-    if (reference &&
-        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end())
-      order.push_back(reference);
-    for (const std::string& name : c.methods)
-      if (!reference || name != reference->name) order.push_back(suite_.find_method(name));
-    for (const SuiteMethod* method : order) {
+    const bool has_reference =
+        reference &&
+        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end();
+    // What is rendered, in order: the case's reference first, then the own references of the
+    // variants that change the sea (SuiteMethod::own_reference), then every other method, each
+    // measured against the reference of its sea: key "" the case's, else the variant's name.
+    struct Job {
+      const SuiteMethod* method;
+      std::string against;  // the key of its reference; "" the case's
+      bool is_reference;    // its images are the reference of `against`
+    };
+    std::vector<Job> jobs;
+    std::vector<SuiteMethod> own_references;  // the own references' methods (name, set)
+    own_references.reserve(c.methods.size());
+    if (has_reference) jobs.push_back({reference, "", true});
+    for (const std::string& name : c.methods) {
+      const SuiteMethod* m = suite_.find_method(name);
+      if (!has_reference || !m->own_reference) continue;
+      own_references.push_back({.name = "reference_" + m->name,
+                                .method = reference->method,
+                                .description = "the reference of " + m->name + "'s sea",
+                                .set = m->set});
+      jobs.push_back({&own_references.back(), m->name, true});
+    }
+    for (const std::string& name : c.methods) {
+      const SuiteMethod* m = suite_.find_method(name);
+      if (m == reference) continue;
+      jobs.push_back({m, m->own_reference && has_reference ? m->name : "", false});
+    }
+    // (reference key, term) -> the reference's renders.
+    std::map<std::pair<std::string, std::string>, Rendered> reference_images;
+    for (const Job& job : jobs) {
+      const SuiteMethod* method = job.method;
       const Scene scene = validation::case_scene(suite_, c, method);
       MethodResult m;
       m.name = method->name;
       m.method = method->method;
       m.plain = method->plain();
+      if (!job.is_reference && !job.against.empty()) m.reference = "reference_" + job.against;
       for (const std::string& term : suite_.terms) {
         Rendered rendered = render_term(c, *method, scene, term);
-        if (method == reference)
+        if (job.is_reference)
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] = validation::reference_for_comparison(
                 rendered.frames[k], rendered.compared[k], view.sea_mask());
@@ -118,8 +143,8 @@ class CaseRunner {
                    {"thalassa:method", method->method},
                    {"thalassa:terms", validation::terms_option(term)}});
         write_png((fs::path(dir_) / t.png).string(), rendered.frames.front(), scene.image.exposure);
-        if (method == reference) {
-          reference_images[term] = rendered;
+        if (job.is_reference) {
+          reference_images[{job.against, term}] = rendered;
           if (suite_.reference.check_convergence)
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
           const std::vector<double>& rows = rendered.stats.resolved_rows;
@@ -129,7 +154,7 @@ class CaseRunner {
                                            return f >= validation::kResolvedRowFraction;
                                          })));
         }
-        const auto ref = reference_images.find(term);
+        const auto ref = reference_images.find({job.against, term});
         if (ref != reference_images.end()) {
           // Only the rows where the reference's sun is resolved (all rows without the sun).
           const validation::PixelMask compared = validation::resolved_rows_mask(
@@ -207,7 +232,15 @@ int render_count(const Suite& suite) {
       ++count;  // its refusal is a (skipped) step
       continue;
     }
-    for (std::size_t m = 0; m < c.methods.size(); ++m)
+    // Each method, and the own reference of each variant that has one (with a reference).
+    const SuiteMethod* reference = suite.reference_method();
+    const bool has_reference =
+        reference &&
+        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end();
+    std::size_t renders = c.methods.size();
+    for (const std::string& name : c.methods)
+      renders += has_reference && suite.find_method(name)->own_reference ? 1 : 0;
+    for (std::size_t m = 0; m < renders; ++m)
       for (const std::string& term : suite.terms) {
         const bool over_time = suite.flicker.frames >= 2 &&
                                std::find(suite.flicker.terms.begin(), suite.flicker.terms.end(),

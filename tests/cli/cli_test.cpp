@@ -315,6 +315,45 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_LT(resolved["sun"].get<int>(), 16);
 }
 
+// A variant that changes the sea (30 waves where the case has 60) is measured against a
+// reference of its own sea, rendered with its overrides and reported as a method of the case; the
+// other methods keep the case's reference.
+TEST_F(Cli, ValidateMeasuresASeaChangingVariantAgainstItsOwnReference) {
+  write("own.json", R"({"suite": "own",
+    "base": {"image.width": 24, "image.height": 16, "camera.pitch": -20, "ocean.waves": 60},
+    "methods": ["reference", "full",
+      {"name": "full_waves30", "method": "full", "set": {"ocean.waves": 30},
+       "own_reference": true}],
+    "terms": ["sky"], "flicker": {"frames": 1, "terms": ["sky"]},
+    "reference": {"pixel_samples": 4},
+    "cases": [{"name": "near", "set": {}}]})");
+  const Result r = run("validate own.json -o report");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "report" / "images/near_reference_full_waves30_sky.exr"));
+  std::ifstream in(dir_ / "report" / "results.json");
+  const auto results = nlohmann::json::parse(in);
+  const auto& methods = results["cases"][0]["methods"];
+  ASSERT_EQ(methods.size(), 4u);
+  EXPECT_EQ(methods[0]["name"], "reference");
+  EXPECT_EQ(methods[1]["name"], "reference_full_waves30");
+  EXPECT_EQ(methods[1]["method"], "reference");
+  EXPECT_EQ(methods[2]["name"], "full");
+  EXPECT_EQ(methods[2]["reference"], "");
+  EXPECT_EQ(methods[3]["name"], "full_waves30");
+  EXPECT_EQ(methods[3]["reference"], "reference_full_waves30");
+  const auto l1 = [&](int m) {
+    return methods[m]["terms"][0]["error"]["relative_l1"]["l"].get<double>();
+  };
+  EXPECT_EQ(l1(1), 0.0);  // its own reference against itself
+  EXPECT_GT(l1(2), 0.0);
+  EXPECT_GT(l1(3), 0.0);
+  // metrics.csv names the reference each line was measured against.
+  std::ifstream csv(dir_ / "report" / "metrics.csv");
+  const std::string text{std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("near_full_waves30_sky.png,reference_full_waves30"), std::string::npos);
+  EXPECT_NE(text.find("near_full_sky.png,reference"), std::string::npos);
+}
+
 TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   write("bad.json", R"({"suite": "bad", "cases": [{"name": "x", "set": {"camera.hieght": 4}}]})");
   expect_invalid(run("validate bad.json -o out"), {"bad.json", "camera.hieght"});

@@ -263,6 +263,17 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: cases[0].set.camera.lat: expected a number in [-90, 90]..."},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.spectrum": "jonswap"}}]})",
        "t.json: cases[0].set.ocean.spectrum: expected ..."},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "own_reference": true}],
+           "cases": [)" + ok_case + "]}",
+       "t.json: methods[0].own_reference: expected true only for a variant (a `set`) of a method "
+       "other than the reference, got a method without a set"},
+      {R"({"suite": "s", "methods": [{"name": "r", "method": "reference", "set": {"ocean.waves": 30},
+           "own_reference": true}], "cases": [)" + ok_case + "]}",
+       "t.json: methods[0].own_reference: expected true only for a variant (a `set`) of a method "
+       "other than the reference, got the reference"},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "set": {"ocean.waves": 30},
+           "own_reference": 1}], "cases": [)" + ok_case + "]}",
+       "t.json: methods[0].own_reference: expected true or false, got 1"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": [1]}}]})",
        "t.json: cases[0].set.camera.pitch: expected a number, string or boolean, got an array"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": null}}]})",

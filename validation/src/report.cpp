@@ -88,10 +88,23 @@ std::string overrides_text(const std::vector<SceneOverride>& set) {
   return s;
 }
 
+const MethodResult* method_named(const CaseResult& c, const std::string& name) {
+  for (const MethodResult& m : c.methods)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
 const MethodResult* reference_of(const CaseResult& c) {
   for (const MethodResult& m : c.methods)
     if (m.method == "reference" && m.plain) return &m;
   return nullptr;
+}
+
+// The reference `m` was measured against: its own (MethodResult::reference) or the case's.
+const MethodResult* measured_against(const CaseResult& c, const MethodResult& m) {
+  if (!m.reference.empty())
+    if (const MethodResult* own = method_named(c, m.reference)) return own;
+  return reference_of(c);
 }
 
 const TermResult* term_of(const MethodResult& m, const std::string& term) {
@@ -272,7 +285,7 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
   for (const std::string& t : terms) data += " frame_ms_" + t + " relative_l1_" + t;
   data += "\n";
   for (const MethodResult& m : c.methods) {
-    if (m.method == "reference" && m.plain) continue;
+    if (m.method == "reference") continue;  // the case's as dashed lines; a variant's own: 0
     data += m.name;
     for (const std::string& term : terms) {
       const TermResult* t = term_of(m, term);
@@ -329,7 +342,7 @@ std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, cons
                          const std::string& term, const ReportOptions& options) {
   std::vector<std::pair<std::string, const TermResult*>> curves;
   for (const MethodResult& m : c.methods) {
-    if (m.method == "reference" && m.plain) continue;
+    if (m.method == "reference") continue;
     const TermResult* t = term_of(m, term);
     if (t && t->metrics.horizon.pixels > 0) curves.push_back({m.name, t});
   }
@@ -400,10 +413,11 @@ std::string metrics_csv(const Report& report) {
                               "reference_flicker",
                               "temporal_error",
                               "exr",
-                              "png"});
+                              "png",
+                              "reference"});
   for (const CaseResult& c : report.cases) {
-    const MethodResult* ref = reference_of(c);
     for (const MethodResult& m : c.methods) {
+      const MethodResult* ref = measured_against(c, m);
       for (const TermResult& t : m.terms) {
         const ErrorStats& e = t.metrics.error;
         const HorizonBand& h = t.metrics.horizon;
@@ -434,7 +448,8 @@ std::string metrics_csv(const Report& report) {
                          number(rt && rt->flicker ? *rt->flicker : kNaN),
                          number(t.temporal_error.value_or(kNaN)),
                          t.exr,
-                         t.png});
+                         t.png,
+                         ref ? ref->name : std::string()});
       }
     }
   }
@@ -565,8 +580,11 @@ std::string index_html(const Report& report,
          "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
     for (const MethodResult& m : c.methods)
       for (const TermResult& t : m.terms) {
-        const TermResult* rt = ref ? term_of(*ref, t.term) : nullptr;
-        h += "<tr><td class=\"t\">" + html(m.name) + "</td><td class=\"t\">" + html(t.term) +
+        const MethodResult* against = measured_against(c, m);
+        const TermResult* rt = against ? term_of(*against, t.term) : nullptr;
+        const std::string name =
+            against && against != ref ? m.name + " (against " + against->name + ")" : m.name;
+        h += "<tr><td class=\"t\">" + html(name) + "</td><td class=\"t\">" + html(t.term) +
              "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
              (t.samples > 0 ? std::to_string(t.samples) : std::string("-")) + "</td><td>" +
              short_number(t.metrics.error.relative_l1.l) + "</td><td>" +
@@ -579,19 +597,23 @@ std::string index_html(const Report& report,
              short_number(t.temporal_error.value_or(kNaN)) + "</td></tr>\n";
       }
     h += "</table>\n";
-    if (!ref || ref->convergence.empty()) {
-    } else {
-      h += "<p>Reference convergence (largest row change at twice the samples):";
-      for (const auto& [term, change] : ref->convergence)
-        h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
-      h += "</p>\n";
-    }
-    if (ref && !ref->resolved_rows.empty()) {
-      h += "<p>Rows where the reference's sun resolves every wave (the only rows compared for "
-           "that term):";
-      for (const auto& [term, rows] : ref->resolved_rows)
-        h += " " + html(term) + " " + std::to_string(rows) + ";";
-      h += "</p>\n";
+    // The case's reference, then the variants' own references.
+    for (const MethodResult& r : c.methods) {
+      if (r.method != "reference") continue;
+      const std::string which = &r == ref ? "Reference" : "Reference " + r.name;
+      if (!r.convergence.empty()) {
+        h += "<p>" + html(which) + " convergence (largest row change at twice the samples):";
+        for (const auto& [term, change] : r.convergence)
+          h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
+        h += "</p>\n";
+      }
+      if (!r.resolved_rows.empty()) {
+        h += "<p>" + html(which) +
+             ": rows where its sun resolves every wave (the only rows compared for that term):";
+        for (const auto& [term, rows] : r.resolved_rows)
+          h += " " + html(term) + " " + std::to_string(rows) + ";";
+        h += "</p>\n";
+      }
     }
     h += "<p>";
     for (const auto& [title, png] : plots[ci])
@@ -654,6 +676,7 @@ std::string report_json(const Report& report) {
       jm["name"] = m.name;
       jm["method"] = m.method;
       jm["plain"] = m.plain;
+      jm["reference"] = m.reference;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
       jm["resolved_rows"] = ojson::object();
@@ -738,6 +761,7 @@ Report report_from_json(const std::string& json_text) {
       m.name = jm.at("name");
       m.method = jm.at("method");
       m.plain = jm.at("plain");
+      m.reference = jm.value("reference", std::string());
       for (const auto& [term, change] : jm.at("convergence").items())
         m.convergence.push_back({term, get_number(change)});
       if (jm.contains("resolved_rows"))

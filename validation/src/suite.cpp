@@ -153,7 +153,8 @@ SuiteMethod parse_method(const json& m, std::string_view source, const std::stri
   if (!m.is_object())
     fail(source, at, "a method name or an object {\"name\": ..., \"method\": ..., \"set\": {...}}",
          describe(m));
-  static constexpr std::string_view kKeys[] = {"name", "method", "description", "set"};
+  static constexpr std::string_view kKeys[] = {"name", "method", "description", "set",
+                                               "own_reference"};
   only_known(m, kKeys, source, at + ".");
   if (!m.contains("name")) fail(source, at + ".name", "a name of a-z, 0-9 and _", "none");
   method.name = name_at(m["name"], source, at + ".name");
@@ -162,6 +163,13 @@ SuiteMethod parse_method(const json& m, std::string_view source, const std::stri
   if (m.contains("description"))
     method.description = string_at(m["description"], source, at + ".description");
   if (m.contains("set")) method.set = overrides_at(m["set"], source, at + ".set", true);
+  if (m.contains("own_reference")) {
+    method.own_reference = bool_at(m["own_reference"], source, at + ".own_reference");
+    if (method.own_reference && (method.set.empty() || method.method == "reference"))
+      fail(source, at + ".own_reference",
+           "true only for a variant (a `set`) of a method other than the reference",
+           method.set.empty() ? "a method without a set" : "the reference");
+  }
   return method;
 }
 

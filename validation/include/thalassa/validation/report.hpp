@@ -45,6 +45,9 @@ struct MethodResult {
   std::string name;               // SuiteMethod::name
   std::string method;             // SuiteMethod::method
   bool plain = true;              // SuiteMethod::plain(): on the per-row plots
+  // The reference its terms are measured against: "" the case's, else the name of the variant's
+  // own reference ("reference_" + name, SuiteMethod::own_reference), itself a method of the case.
+  std::string reference;
   std::vector<TermResult> terms;  // in the suite's term order
   // The reference only, with ReferenceSettings::check_convergence: per term, the largest
   // |row total at twice the samples / row total - 1| (max_row_deviation).

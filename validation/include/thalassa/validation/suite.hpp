@@ -7,7 +7,8 @@
 // A case's scene is the embedded default scene, then the suite's `scene` file if given, then
 // `base`'s overrides, then the case's own `set`, each applied as `--set key=value` with the
 // value's JSON text. A method's (or variant's) `set` is laid over the case's scene for that
-// method only: the reference of a case is always its scene without them.
+// method only: the reference of a case is its scene without them, and a variant with
+// own_reference is measured against a reference rendered with its `set`.
 #pragma once
 
 #include <algorithm>
@@ -54,6 +55,11 @@ struct SuiteMethod {
   std::string method;  // one of kMethods
   std::string description;
   std::vector<SceneOverride> set;  // laid over the case's scene for this method only
+  // Whether `set` changes the sea itself (ocean.waves: 30 waves are another sea than 60), so
+  // that the variant is measured against a reference of its own, the reference method rendered
+  // with the same `set` ("reference_" + name in the report), rather than the case's. A variant
+  // that changes how a sea is drawn (ocean.grid_cell, ocean.sky_filter) keeps the case's.
+  bool own_reference = false;
   // A plain method (no `set`): drawn on the per-row radiance plots (fig. 10). Every method is
   // on the error-against-time plot.
   bool plain() const { return set.empty(); }
