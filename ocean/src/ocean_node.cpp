@@ -280,6 +280,10 @@ class OceanNode final : public gl::Node {
       case OceanMethod::normals:
         return {{"METHOD_NORMALS", "1"}};
       case OceanMethod::reference:
+        // With the sun alone its samples weigh by their strata's visible area
+        // (ocean_geometry.frag).
+        if (reference_sun() && !options_.sky && !options_.sea)
+          return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}, {"REFERENCE_SUN_ONLY", "1"}};
         if (reference_sun()) return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}};
         return {{"METHOD_REFERENCE", "1"}};
     }

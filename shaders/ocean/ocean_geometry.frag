@@ -165,15 +165,23 @@ void main() {
   // A mirror for the sky and the refracted light, weighted by the visible area of the facet it
   // samples (the renderer's draw_reference averages a pixel's sea samples with it); the sun
   // reflected by the sample's stratum of the pixel, resolved cell by cell.
+#ifdef REFERENCE_SUN
+  // (sun, resolved, the stratum's mean N.v over its cells).
+  const vec3 sun = ReferenceReflectedSun(x, x_dx, x_dy, v, FrameSunDirection(), downwind);
+#else
+  const vec3 sun = vec3(0.0, 1.0, 0.0);
+#endif
+#ifdef REFERENCE_SUN_ONLY
+  // The sun alone: its cells weigh the stratum's facets by their visible area already, so the
+  // stratum weighs by its cells' mean N.v, smooth, rather than by the sample point's, which
+  // varies with every short wave (noise between the pixel's strata, nothing else).
+  const float weight = OceanReferenceProjectedWeight(sun.z, cross(x_dx, x_dy),
+                                                     cross(mesh_dx, mesh_dy), v);
+#else
   const float weight = OceanReferenceVisibleWeight(FrameSeaTangentFrame(x) * area_local,
                                                    cross(x_dx, x_dy), cross(mesh_dx, mesh_dy), v);
-#ifdef REFERENCE_SUN
-  const vec2 sun_and_resolved =
-      ReferenceReflectedSun(x, x_dx, x_dy, v, FrameSunDirection(), downwind);
-#else
-  const vec2 sun_and_resolved = vec2(0.0, 1.0);
 #endif
-  variance_out = vec4(weight, sun_and_resolved.y, sun_and_resolved.x, 0.0);
+  variance_out = vec4(weight, sun.y, sun.x, 0.0);
 #elif defined(METHOD_NORMALS)
   // A mirror: no BRDF width (the sun term keeps its disc's, ocean/ross_brdf.glsl).
   variance_out = vec4(0.0);

@@ -89,8 +89,9 @@ vec2 ReferenceCellFrameSlope(vec3 f, vec3 t_x, vec3 t_y, vec3 n) {
 // The sun reflected by the pixel's stratum whose sample point on the sea at rest is x (m, nadir
 // frame), with rest-position screen derivatives dx, dy (m per pixel), per unit L_sun Omega_sun
 // as OceanReflectedSun; v toward the eye, sun toward the sun (nadir frame), downwind unit (east,
-// north). Returns (sun factor, 1 if every cell is at most reference_spacing wide else 0).
-vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 downwind) {
+// north). Returns (sun factor, 1 if every cell is at most reference_spacing wide else 0, the
+// cells' mean N.v per unit rest area: the stratum's visible area per unit rest area).
+vec3 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 downwind) {
   const int max_cells = clamp(reference_max_cells, 1, REFERENCE_MAX_CELLS);
   const float spacing = max(reference_spacing, 1e-6);
   const float stratum = clamp(frame_pixel_offset.z, 1e-3, 1.0);  // pixels
@@ -150,7 +151,8 @@ vec2 ReferenceReflectedSun(vec3 x, vec3 dx, vec3 dy, vec3 v, vec3 sun, vec2 down
     }
     previous[kx] = left;
   }
-  return vec2(sum_weight > 0.0 ? sum_sun / sum_weight : 0.0, resolved);
+  return vec3(sum_weight > 0.0 ? sum_sun / sum_weight : 0.0, resolved,
+              sum_weight / float(kx * ky));
 }
 
 #endif  // THALASSA_OCEAN_REFERENCE_SUN_GLSL

@@ -39,18 +39,26 @@
 // rather than without bound.
 const Number OCEAN_REFERENCE_MIN_MESH_COS = 1e-3;
 
+// The weight w above with N.v given (projected, per unit rest area: an average of N.v over some
+// cells of the pixel, as the reference's sun takes them). Dimensionless, >= 0, finite for every
+// finite input; the arguments as for OceanReferenceVisibleWeight.
+Number OceanReferenceProjectedWeight(IN(Number) projected, IN(vec3) rest_area, IN(vec3) mesh_area,
+                                     IN(vec3) v) {
+  Number mesh_length = length(mesh_area);
+  Number mesh_projected = max(abs(dot(mesh_area, v)), OCEAN_REFERENCE_MIN_MESH_COS * mesh_length);
+  if (!(mesh_projected > 0.0)) {
+    return 0.0;  // a degenerate triangle has no pixel
+  }
+  return max(projected, 0.0) * length(rest_area) / mesh_projected;
+}
+
 // The weight w above (dimensionless, >= 0, finite for every finite input). surface_area: N =
 // d_dx x d_dy of the sea with every wave, per unit rest area, in the frame of v; rest_area: x_dx
 // x x_dy (m^2 per pixel); mesh_area: p_dx x p_dy (m^2 per pixel), either orientation (a folded
 // triangle seen from behind is still what the pixel shows); v: unit, toward the eye.
 Number OceanReferenceVisibleWeight(IN(vec3) surface_area, IN(vec3) rest_area, IN(vec3) mesh_area,
                                    IN(vec3) v) {
-  Number mesh_length = length(mesh_area);
-  Number mesh_projected = max(abs(dot(mesh_area, v)), OCEAN_REFERENCE_MIN_MESH_COS * mesh_length);
-  if (!(mesh_projected > 0.0)) {
-    return 0.0;  // a degenerate triangle has no pixel
-  }
-  return max(dot(surface_area, v), 0.0) * length(rest_area) / mesh_projected;
+  return OceanReferenceProjectedWeight(dot(surface_area, v), rest_area, mesh_area, v);
 }
 
 #endif  // THALASSA_OCEAN_VISIBLE_AREA_WEIGHT_GLSL

@@ -98,7 +98,9 @@ TEST(OceanMethods, ReferenceSeaImageIsThePixelsSeaAlone) {
       const float coverage = s[3];
       ASSERT_GE(coverage, 0.0f);
       ASSERT_LE(coverage, 1.0f);
-      if (y < 4) EXPECT_EQ(coverage, 0.0f) << x << ", " << y;  // 2.5 degrees above the horizon
+      if (y < 4) {
+        EXPECT_EQ(coverage, 0.0f) << x << ", " << y;  // 2.5 degrees above the horizon
+      }
       if (y >= h - 4) {
         EXPECT_EQ(coverage, 1.0f) << x << ", " << y;
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(s[c], p[c], 1e-6 * std::abs(p[c])) << x << ", " << y;

@@ -99,7 +99,9 @@ TEST(CellSlopeDensity, ALatticeOfCellsSumsToAFlatDensity) {
     EXPECT_LT(worst, 5e-3) << cell.name;
     // Gaussians of a box's variance ripple by 2 exp(-2 pi^2 / 12) = 0.39 and more; the sliver's
     // are as wide as the sun's, much wider than its lattice's rows, and ripple little.
-    if (cell.d_v.y > 0.002) EXPECT_GT(worst_gaussian, 0.2) << cell.name;
+    if (cell.d_v.y > 0.002) {
+      EXPECT_GT(worst_gaussian, 0.2) << cell.name;
+    }
   }
 }
 
