@@ -272,6 +272,11 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: methods[0].own_reference: expected true only for a variant (a `set`) of a method "
        "other than the reference, got the reference"},
       {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "set": {"ocean.waves": 30},
+           "own_reference": true}, {"name": "reference_f", "method": "full"}],
+           "cases": [)" + ok_case + "]}",
+       "t.json: methods[0].own_reference: expected no method named \"reference_f\" (the name of "
+       "its own reference), got one"},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "set": {"ocean.waves": 30},
            "own_reference": 1}], "cases": [)" + ok_case + "]}",
        "t.json: methods[0].own_reference: expected true or false, got 1"},
       {R"({"suite": "s", "cases": [{"name": "a", "set": {"camera.pitch": [1]}}]})",

@@ -306,6 +306,15 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
              "\"" + m.name + "\" a second time");
       suite.methods.push_back(std::move(m));
     }
+    // An own reference is reported as the method "reference_<variant>": no method may have
+    // that name.
+    for (std::size_t i = 0; i < suite.methods.size(); ++i)
+      if (suite.methods[i].own_reference &&
+          suite.find_method("reference_" + suite.methods[i].name))
+        fail(source, "methods[" + std::to_string(i) + "].own_reference",
+             "no method named \"reference_" + suite.methods[i].name +
+                 "\" (the name of its own reference)",
+             "one");
   } else {
     suite.methods.push_back({"full", "full", "", {}});
   }
