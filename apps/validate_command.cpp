@@ -33,6 +33,13 @@ bool all_finite(const Image& image) {
   return true;
 }
 
+// Whether case `c` renders the suite's reference (then its metrics are computed).
+bool renders_reference(const Suite& suite, const SuiteCase& c) {
+  const SuiteMethod* reference = suite.reference_method();
+  return reference &&
+         std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end();
+}
+
 // The renders of one case: (method name, term) -> images over the flicker frames (frame 0
 // first) and the frame time of frame 0.
 struct Rendered {
@@ -82,9 +89,7 @@ class CaseRunner {
   void render_case(const SuiteCase& c, const Scene& base_scene, CaseResult& result) {
     const validation::ViewGeometry view(base_scene);
     const SuiteMethod* reference = suite_.reference_method();
-    const bool has_reference =
-        reference &&
-        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end();
+    const bool has_reference = renders_reference(suite_, c);
     // What is rendered, in order: the case's reference first, then the own references of the
     // variants that change the sea (SuiteMethod::own_reference), then every other method, each
     // measured against the reference of its sea: key "" the case's, else the variant's name.
@@ -94,7 +99,8 @@ class CaseRunner {
       bool is_reference;    // its images are the reference of `against`
     };
     std::vector<Job> jobs;
-    std::vector<SuiteMethod> own_references;  // the own references' methods (name, set)
+    // The own references' methods (name, set); reserved, so that the jobs' pointers stay valid.
+    std::vector<SuiteMethod> own_references;
     own_references.reserve(c.methods.size());
     if (has_reference) jobs.push_back({reference, "", true});
     for (const std::string& name : c.methods) {
@@ -233,10 +239,7 @@ int render_count(const Suite& suite) {
       continue;
     }
     // Each method, and the own reference of each variant that has one (with a reference).
-    const SuiteMethod* reference = suite.reference_method();
-    const bool has_reference =
-        reference &&
-        std::find(c.methods.begin(), c.methods.end(), reference->name) != c.methods.end();
+    const bool has_reference = renders_reference(suite, c);
     std::size_t renders = c.methods.size();
     for (const std::string& name : c.methods)
       renders += has_reference && suite.find_method(name)->own_reference ? 1 : 0;
