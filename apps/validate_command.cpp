@@ -126,7 +126,8 @@ class CaseRunner {
       m.name = method->name;
       m.method = method->method;
       m.plain = method->plain();
-      if (!job.is_reference && !job.against.empty()) m.reference = "reference_" + job.against;
+      // A variant's own reference is measured against itself, like the case's.
+      if (!job.against.empty()) m.reference = "reference_" + job.against;
       for (const std::string& term : suite_.terms) {
         Rendered rendered = render_term(c, *method, scene, term);
         if (job.is_reference)

@@ -337,6 +337,7 @@ TEST_F(Cli, ValidateMeasuresASeaChangingVariantAgainstItsOwnReference) {
   EXPECT_EQ(methods[0]["name"], "reference");
   EXPECT_EQ(methods[1]["name"], "reference_full_waves30");
   EXPECT_EQ(methods[1]["method"], "reference");
+  EXPECT_EQ(methods[1]["reference"], "reference_full_waves30");  // against itself
   EXPECT_EQ(methods[2]["name"], "full");
   EXPECT_EQ(methods[2]["reference"], "");
   EXPECT_EQ(methods[3]["name"], "full_waves30");
@@ -351,7 +352,9 @@ TEST_F(Cli, ValidateMeasuresASeaChangingVariantAgainstItsOwnReference) {
   std::ifstream csv(dir_ / "report" / "metrics.csv");
   const std::string text{std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>()};
   EXPECT_NE(text.find("near_full_waves30_sky.png,reference_full_waves30"), std::string::npos);
-  EXPECT_NE(text.find("near_full_sky.png,reference"), std::string::npos);
+  EXPECT_NE(text.find("near_full_sky.png,reference\n"), std::string::npos);
+  EXPECT_NE(text.find("near_reference_full_waves30_sky.png,reference_full_waves30"),
+            std::string::npos);
 }
 
 TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {

@@ -583,7 +583,9 @@ std::string index_html(const Report& report,
         const MethodResult* against = measured_against(c, m);
         const TermResult* rt = against ? term_of(*against, t.term) : nullptr;
         const std::string name =
-            against && against != ref ? m.name + " (against " + against->name + ")" : m.name;
+            against && against != ref && against != &m
+                ? m.name + " (against " + against->name + ")"
+                : m.name;
         h += "<tr><td class=\"t\">" + html(name) + "</td><td class=\"t\">" + html(t.term) +
              "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
              (t.samples > 0 ? std::to_string(t.samples) : std::string("-")) + "</td><td>" +

@@ -46,7 +46,8 @@ struct MethodResult {
   std::string method;             // SuiteMethod::method
   bool plain = true;              // SuiteMethod::plain(): on the per-row plots
   // The reference its terms are measured against: "" the case's, else the name of the variant's
-  // own reference ("reference_" + name, SuiteMethod::own_reference), itself a method of the case.
+  // own reference ("reference_" + name, SuiteMethod::own_reference), itself a method of the case
+  // (whose own `reference` is its name: it is measured against itself).
   std::string reference;
   std::vector<TermResult> terms;  // in the suite's term order
   // The reference only, with ReferenceSettings::check_convergence: per term, the largest
