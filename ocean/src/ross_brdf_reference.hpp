@@ -1,7 +1,8 @@
 // Double-precision CPU reference of the Ross et al. ocean BRDF and its lighting terms: the
 // functions of shaders/ocean/ross_brdf.glsl (and, through it, shaders/ocean/smith.glsl) and of
 // shaders/ocean/cell_slope_density.glsl (the reference method's per-cell sun) and
-// shaders/ocean/visible_area_weight.glsl (the weight of its samples) compiled as C++
+// shaders/ocean/visible_area_weight.glsl (the weight of its samples) and
+// shaders/ocean/reference_cell.glsl (the geometry of its sun's cells) compiled as C++
 // (Number = double, vec2/vec3 = glm::dvec2/dvec3) in namespace thalassa::glsl, e.g.
 // thalassa::glsl::OceanRossBrdf(v, l, slope_variance, fresnel_r). Frames (the tangent frame:
 // x along the wind, y across, z the mean normal), units and sources are documented in the .glsl
@@ -24,6 +25,7 @@ namespace {
 #include "ocean/ross_brdf.glsl"
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/visible_area_weight.glsl"
+#include "ocean/reference_cell.glsl"
 }  // namespace
 }  // namespace thalassa::glsl
 #pragma GCC diagnostic pop

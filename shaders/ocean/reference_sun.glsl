@@ -42,6 +42,8 @@
 #ifndef THALASSA_OCEAN_REFERENCE_SUN_GLSL
 #define THALASSA_OCEAN_REFERENCE_SUN_GLSL
 
+#include "ocean/reference_cell.glsl"
+
 // m: the largest cell side on the sea at rest that counts as resolved (ocean_node.cpp:
 // kReferenceSpacingFraction x the shortest wavelength of the set).
 uniform float reference_spacing;
@@ -81,13 +83,6 @@ vec3 ReferenceSlopeAndWeight(vec3 x, vec3 v) {
   const vec3 n_local = cross(d_dx, d_dy);  // unnormalised: |n_local| is the displaced area ratio
   const float weight = max(dot(FrameSeaTangentFrame(x) * n_local, v), 0.0);
   return vec3(n_local.xy / max(n_local.z, 1e-6), weight);
-}
-
-// The slopes zeta (dimensionless) in the tangent frame (t_x, t_y, n) of a facet of normal f
-// (any length, world frame): f = (-zeta, 1) up to its length. A corner tilted 90 degrees or more
-// from the cell's mean normal (not a small cell of a resolved sea) is held at 1e6.
-vec2 ReferenceCellFrameSlope(vec3 f, vec3 t_x, vec3 t_y, vec3 n) {
-  return -vec2(dot(f, t_x), dot(f, t_y)) / max(dot(f, n), 1e-6 * length(f));
 }
 
 // The sun reflected by the pixel's stratum whose sample point on the sea at rest is x (m, nadir
