@@ -24,6 +24,13 @@ std::string stats_json(const RenderStats& stats) {
   json["method"] = stats.method;
   json["samples"] = stats.samples;
   json["sample_row_change"] = stats.sample_row_change;
+  if (stats.method == "reference" && stats.sun_lattice_ms > 0.0) {
+    json["sun_lattice_row_change"] = stats.sun_lattice_row_change;
+    json["sun_lattice_rows"] = stats.sun_lattice_rows;
+    json["sun_lattice_ms"] = stats.sun_lattice_ms;
+    json["sun_lattice_margin"] = stats.sun_lattice_margin;
+    json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
+  }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
   json["sky_provider"] = stats.sky_provider;
   json["setup_ms"] = nlohmann::ordered_json::object();
@@ -72,9 +79,9 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
   render
       ->add_option("--sun-cells", args.sun_cells,
                    "The reference's sun: the most cells per pixel side, at most 64 per side of "
-                   "each of its s x s strata (rows that need more are reported unresolved in "
-                   "--stats resolved_rows)")
-      ->check(CLI::Range(1, 4096))
+                   "each of its s x s strata (1024 per pixel with --sun-scatter); rows that need "
+                   "more are reported unresolved in --stats resolved_rows")
+      ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   render
       ->add_option("--sun-cells-per-wavelength", args.sun_cells_per_wavelength,
@@ -82,6 +89,9 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "and costs the square)")
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
+  render->add_flag("--sun-scatter", args.sun_scatter,
+                   "Experimental: the reference's sun scattered once per image from a lattice of "
+                   "the sea, with no noise between sample counts (docs/validation.md)");
 }
 
 int run_render(const RenderArgs& args) {
@@ -104,6 +114,7 @@ int run_render(const RenderArgs& args) {
       std::min(renderer_options.reference.min_samples, args.samples);
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
+  renderer_options.reference.sun_scatter = args.sun_scatter;
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight
           ? "--method " + args.method +

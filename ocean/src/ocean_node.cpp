@@ -1,7 +1,9 @@
 #include "thalassa/ocean/gl/ocean_node.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -24,8 +26,27 @@ constexpr int kGridMarginCells = 2;
 // 5 cm triangles; its normals are exact per sample here, its positions to a pixel).
 constexpr double kReferenceGridCell = 1.0;
 
-// The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds.
+// The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds (the
+// gathered sun), and per pixel side of the scattered sun's lattice
+// (shaders/ocean/reference_sun_scatter.comp): 1024^2 cells per pixel, 16 times the paper's
+// sec. 7.2 count and far past what a validation image can afford.
 constexpr int kReferenceMaxCells = 64;
+constexpr int kScatterMaxCells = 1024;
+
+// The scattered sun's lattice: invocations per dispatch (65535 work groups of 64, GL's smallest
+// guaranteed work-group count) and the most pixels added beyond each image edge.
+constexpr std::uint64_t kScatterBatch = 65535ull * 64ull;
+constexpr int kScatterMaxMargin = 256;
+// Its convergence measure's rows: not below this fraction of the brightest row's total (as the
+// renderer's kNegligibleRow), and resolved by the coarser lattice to at least this fraction of
+// their sea (a row past the cap changes with the cap, not with the lattice).
+constexpr double kScatterNegligibleRow = 1e-3;
+constexpr double kScatterResolvedRow = 0.99;
+// The storage-buffer binding of the scattered sun (reference_sun_scatter.comp and
+// ocean_lighting.frag), clear of the waves' (1, 2) and the wakes' (3, 4), and the texture unit of
+// the grid's depth it reads, clear of the sky provider's (4-11) and the calm areas' (12).
+constexpr GLuint kReferenceSunBinding = 7;
+constexpr GLuint kGridDepthUnit = 14;
 
 class OceanNode final : public gl::Node {
  public:
@@ -84,6 +105,7 @@ class OceanNode final : public gl::Node {
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
     if (options_.method == OceanMethod::reference) lighting_defines["METHOD_REFERENCE"] = "1";
     if (reference_sun()) lighting_defines["REFERENCE_SUN"] = "1";
+    if (reference_sun_scatter()) lighting_defines["REFERENCE_SUN_SCATTER"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
     // Above kResolvedFadeStart the sky's reflection hands over to the view from space's array
@@ -210,6 +232,12 @@ class OceanNode final : public gl::Node {
     draw_backstop(context.shaders, downwind, scale);
     context.timer.end_pass("ocean.geometry");
 
+    // The reference's sun, once per lattice (not per sample).
+    if (reference_sun_scatter()) {
+      scatter_reference_sun(inputs, camera, downwind, context);
+      glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReferenceSunBinding, reference_sun_buffer_.get());
+    }
+
     // Pass 2, lighting (sec. 7.3's second part), into the HDR target where the grid drew.
     glBindFramebuffer(GL_FRAMEBUFFER, context.target.framebuffer());
     glUseProgram(lighting);
@@ -221,6 +249,15 @@ class OceanNode final : public gl::Node {
   }
 
   int resolved_waves() const override { return resolved_waves_; }
+
+  std::vector<std::pair<std::string, double>> measurements() const override {
+    if (!reference_sun_scatter() || scatter_ms_ < 0.0) return {};
+    return {{"reference_sun.ms", scatter_ms_},
+            {"reference_sun.lattice_row_change", lattice_row_change_},
+            {"reference_sun.lattice_rows", double(lattice_rows_)},
+            {"reference_sun.hidden_fraction", hidden_fraction_},
+            {"reference_sun.margin_px", double(scatter_margin_)}};
+  }
 
  private:
   // Phases wrapped in double on the CPU (issue 3, point 7) at the nadir's place in the waves'
@@ -280,26 +317,31 @@ class OceanNode final : public gl::Node {
       case OceanMethod::normals:
         return {{"METHOD_NORMALS", "1"}};
       case OceanMethod::reference:
+        // The scattered sun is not the first pass's (scatter_reference_sun).
+        if (!reference_sun() || reference_sun_scatter()) return {{"METHOD_REFERENCE", "1"}};
         // With the sun alone its samples weigh by their strata's visible area
         // (ocean_geometry.frag).
-        if (reference_sun() && !options_.sky && !options_.sea)
+        if (!options_.sky && !options_.sea)
           return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}, {"REFERENCE_SUN_ONLY", "1"}};
-        if (reference_sun()) return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}};
-        return {{"METHOD_REFERENCE", "1"}};
+        return {{"METHOD_REFERENCE", "1"}, {"REFERENCE_SUN", "1"}};
     }
     return {};
   }
 
-  // Whether the first pass integrates the reference's sun (shaders/ocean/reference_sun.glsl).
+  // Whether the reference draws the sun: gathered by the first pass
+  // (shaders/ocean/reference_sun.glsl) or scattered from the sea's lattice
+  // (shaders/ocean/reference_sun_scatter.comp).
   bool reference_sun() const {
     return options_.method == OceanMethod::reference && options_.sun_glint;
   }
+  bool reference_sun_scatter() const { return reference_sun() && options_.reference_sun_scatter; }
 
+  // The gathered sun's uniforms (shaders/ocean/reference_sun.glsl).
   void set_reference_sun_uniforms(GLuint program) const {
-    if (!reference_sun() || waves_.waves.empty()) return;
-    glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"),
-                       float(waves_.lambda_min /
-                             std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0)));
+    if (!reference_sun() || reference_sun_scatter() || waves_.waves.empty()) return;
+    glProgramUniform1f(
+        program, glGetUniformLocation(program, "reference_spacing"),
+        float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0)));
     glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"),
                        std::clamp(options_.reference_sun_cells, 1, kReferenceMaxCells));
     glProgramUniform1f(program, glGetUniformLocation(program, "fresnel_r"),
@@ -385,6 +427,162 @@ class OceanNode final : public gl::Node {
     glDepthMask(GL_TRUE);
   }
 
+  // The reference's sun (shaders/ocean/reference_sun_scatter.comp) into reference_sun_buffer_,
+  // computed once per lattice: again only when the frame changes other than in its pixel offset
+  // (the reference's samples share one). The same at half the cells (spacing and cap times
+  // sqrt 2) gives lattice_row_change_, the issue's "doubling the samples" for the sun's normal
+  // samples: the largest change of an image row's total sun factor between the two, relative to
+  // the finer's, over the rows the coarser resolves (kScatterResolvedRow) that are brighter than
+  // kScatterNegligibleRow of the brightest. (The lighting multiplies the factor by the smooth
+  // transmitted irradiance, so the image's rows change alike.)
+  void scatter_reference_sun(const gl::FrameInputs& inputs, const GridCamera& camera,
+                             const glm::dvec2& downwind, Context& context) {
+    const std::size_t floats = 4 * std::size_t(inputs.width) * std::size_t(inputs.height);
+    if (!reference_sun_buffer_ || reference_sun_floats_ != floats) {
+      reference_sun_buffer_ = gl::make_buffer();
+      coarse_sun_buffer_ = gl::make_buffer();
+      const auto bytes = static_cast<GLsizeiptr>(floats * sizeof(float));
+      glNamedBufferStorage(reference_sun_buffer_.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      glNamedBufferStorage(coarse_sun_buffer_.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      reference_sun_floats_ = floats;
+      has_scatter_key_ = false;
+    }
+    gl::FrameInputs key = inputs;
+    key.pixel_offset = glm::dvec2(0.0);
+    if (has_scatter_key_ && same_lattice(scatter_key_, key)) return;
+    const auto start = std::chrono::steady_clock::now();
+    gl::Defines defines;
+    if (local_features_) local_features_->add_defines(defines);
+    const GLuint program = context.shaders.program(
+        {.compute = "ocean/reference_sun_scatter.comp", .defines = defines});
+    auto location = [&](const char* name) { return glGetUniformLocation(program, name); };
+    glProgramUniform1i(program, location("wave_count"), static_cast<GLint>(waves_.waves.size()));
+    glProgramUniform2f(program, location("downwind"), float(downwind.x), float(downwind.y));
+    glProgramUniform1f(program, location("fresnel_r"), float(options_.settings.fresnel_r));
+    glProgramUniform1f(program, location("n_min"), float(options_.settings.n_min));
+    glProgramUniform1f(program, location("n_max"), float(options_.settings.n_max));
+    const double radius = provider_->planet_radius();
+    const double height = std::max(inputs.camera_height, 0.0);
+    glProgramUniform1f(program, location("horizon_distance"),
+                       float(std::sqrt(height * (2.0 * radius + height))));
+    // Every wave's displacement together is at most the sum of their amplitudes (each moves a
+    // point by exactly h_i; calm areas only scale them down). The wakes' are not included.
+    double displacement = 0.0;
+    for (const Wave& wave : waves_.waves) displacement += wave.amplitude;
+    glProgramUniform1f(program, location("max_displacement"), float(displacement));
+    // The margin: how far (pixels) the nearest sea in the image can move on screen, as the
+    // shader's per-pixel test (its forward distance over the image's 5 x 5 points seeing the sea).
+    double along = INFINITY;
+    for (int i = 0; i <= 4; ++i)
+      for (int j = 0; j <= 4; ++j) {
+        glm::dvec3 p;
+        if (sea_point(camera, glm::dvec2(-1.0 + 0.5 * i, -1.0 + 0.5 * j), p))
+          along = std::min(along, glm::dot(p - glm::dvec3(0.0, 0.0, inputs.camera_height),
+                                           inputs.camera_forward));
+      }
+    const double reach = std::isfinite(along) ? 2.0 * displacement / std::max(along, 1e-3) * 0.5 *
+                                                    inputs.height / inputs.tan_half_fov_y
+                                              : 0.0;
+    scatter_margin_ = static_cast<int>(std::min(std::ceil(reach) + 1.0, double(kScatterMaxMargin)));
+    glProgramUniform1i(program, location("margin"), scatter_margin_);
+    if (local_features_) {
+      local_features_->set_uniforms(program);
+      local_features_->bind();
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
+    // The grid's depth, just drawn (the compute pass reads it; nothing renders meanwhile).
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    glBindTextureUnit(kGridDepthUnit, context.target.depth_texture());
+    const double spacing =
+        waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+    const int cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
+    run_scatter(program, reference_sun_buffer_.get(), spacing, cap, inputs);
+    run_scatter(program, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
+                std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), inputs);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
+    const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
+    const double brightest =
+        fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
+    hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
+    lattice_row_change_ = 0.0;
+    lattice_rows_ = 0;
+    for (std::size_t y = 0; y < fine.total.size(); ++y)
+      if (coarse.resolved[y] >= kScatterResolvedRow &&
+          fine.total[y] > kScatterNegligibleRow * brightest) {
+        lattice_row_change_ = std::max(lattice_row_change_,
+                                       std::abs(fine.total[y] - coarse.total[y]) / fine.total[y]);
+        ++lattice_rows_;
+      }
+    scatter_ms_ =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    context.timer.end_pass("ocean.reference_sun");
+    scatter_key_ = key;
+    has_scatter_key_ = true;
+  }
+
+  // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first.
+  void run_scatter(GLuint program, GLuint buffer, double spacing, int cap,
+                   const gl::FrameInputs& inputs) const {
+    const float zero = 0.0f;
+    glClearNamedBufferData(buffer, GL_R32F, GL_RED, GL_FLOAT, &zero);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReferenceSunBinding, buffer);
+    glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"), float(spacing));
+    glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
+    const std::uint64_t total = std::uint64_t(inputs.width + 2 * scatter_margin_) *
+                                std::uint64_t(inputs.height + 2 * scatter_margin_) *
+                                std::uint64_t(cap);
+    if (total > 0xffffffffull)
+      throw std::invalid_argument(
+          "reference sun: " + std::to_string(total) +
+          " rows of cells exceed the lattice's 32-bit index; expected a smaller image or fewer "
+          "sun cells per pixel (--sun-cells)");
+    glUseProgram(program);
+    const GLint first = glGetUniformLocation(program, "first_invocation");
+    for (std::uint64_t start = 0; start < total; start += kScatterBatch) {
+      glProgramUniform1ui(program, first, static_cast<GLuint>(start));
+      const std::uint64_t count = std::min(kScatterBatch, total - start);
+      glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+    }
+  }
+
+  // Each image row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in buffer,
+  // and the fraction of the row's sum(omega) from footprints within the cell cap.
+  struct SunRows {
+    std::vector<double> total, resolved;
+    double omega = 0.0, hidden = 0.0;  // the image's visible and hidden solid angles (sr)
+  };
+  static SunRows sun_rows(GLuint buffer, const gl::FrameInputs& inputs) {
+    std::vector<float> sums(4 * std::size_t(inputs.width) * std::size_t(inputs.height));
+    glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
+                            sums.data());
+    SunRows rows{std::vector<double>(inputs.height, 0.0), std::vector<double>(inputs.height, 0.0)};
+    for (int y = 0; y < inputs.height; ++y) {
+      double omega = 0.0, unresolved = 0.0;
+      for (int x = 0; x < inputs.width; ++x) {
+        const float* p = &sums[4 * (std::size_t(y) * inputs.width + x)];
+        if (!(p[1] > 0.0f) || !std::isfinite(p[0] / p[1])) continue;
+        rows.total[y] += double(p[0]) / double(p[1]);
+        omega += p[1];
+        unresolved += p[2];
+        rows.hidden += p[3];
+        rows.omega += p[1];
+      }
+      rows.resolved[y] = omega > 0.0 ? 1.0 - unresolved / omega : 0.0;
+    }
+    return rows;
+  }
+
+  // Whether two frames share the reference's sun lattice: everything but the pixel offset.
+  static bool same_lattice(const gl::FrameInputs& a, const gl::FrameInputs& b) {
+    return a.width == b.width && a.height == b.height && a.camera_right == b.camera_right &&
+           a.camera_up == b.camera_up && a.camera_forward == b.camera_forward &&
+           a.tan_half_fov_y == b.tan_half_fov_y && a.camera_height == b.camera_height &&
+           a.sun_direction == b.sun_direction && a.time == b.time &&
+           a.sea_curvature == b.sea_curvature && a.wave_origin == b.wave_origin &&
+           a.wave_axes == b.wave_axes;
+  }
+
   // The smallest footprint of a pixel on the sea at rest (m): over the image corners and centre
   // that see the sea, the distance between neighbouring pixels' points (what dFdx gives the
   // shader); +inf when none does.
@@ -434,6 +632,21 @@ class OceanNode final : public gl::Node {
   GLsizeiptr index_capacity_ = 0;
   int resolved_waves_ = 0;
   glm::dvec2 constant_variance_{0.0};  // the basic method's slope variance (along, across wind)
+  // The reference's sun (scatter_reference_sun): 4 floats per pixel, at the node's lattice and
+  // at half its cells; the frame they were computed for; the pixels added beyond each edge; the
+  // time of both lattices (ms, wall clock to their read-back; < 0: none yet) and the lattice's
+  // convergence measure.
+  gl::Buffer reference_sun_buffer_;
+  gl::Buffer coarse_sun_buffer_;
+  std::size_t reference_sun_floats_ = 0;
+  gl::FrameInputs scatter_key_;
+  bool has_scatter_key_ = false;
+  int scatter_margin_ = 0;
+  double scatter_ms_ = -1.0;
+  double lattice_row_change_ = 0.0;
+  int lattice_rows_ = 0;  // the rows it was measured on
+  double hidden_fraction_ =
+      0.0;  // of the front-facing cells' solid angle, behind the grid's crests
 };
 
 }  // namespace

@@ -87,9 +87,11 @@ int reference_strata(const ReferenceSampling& r) {
   return strata;
 }
 
-// The most cells of the reference's sun per side of a stratum: sun_cells per pixel side shared
-// among the s strata of a side, at most 64 (the shader's row buffer).
-int reference_stratum_cells(const ReferenceSampling& r) {
+// The most cells of the reference's sun per side of what one ocean-node pass integrates: with
+// the scatter, sun_cells per pixel side; gathered, sun_cells per pixel side shared among the s
+// strata of a side, at most 64 (the shader's row buffer).
+int reference_sun_cells(const ReferenceSampling& r) {
+  if (r.sun_scatter) return r.sun_cells;
   const int strata = reference_strata(r);
   return std::clamp((r.sun_cells + strata - 1) / strata, 1, 64);
 }
@@ -184,27 +186,27 @@ struct Renderer::Impl {
     if (options.method == ocean::OceanMethod::reference) {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
-            r.sun_cells >= 1 &&
-            r.sun_cells_per_wavelength >= 1.0 && r.sun_cells_per_wavelength <= 64.0))
+            r.sun_cells >= 1 && r.sun_cells <= 1024 && r.sun_cells_per_wavelength >= 1.0 &&
+            r.sun_cells_per_wavelength <= 64.0))
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
-            "sun_cells >= 1 and sun_cells_per_wavelength in [1, 64]");
+            "sun_cells in [1, 1024] and sun_cells_per_wavelength in [1, 64]");
     }
     if (sea_visible && !space)
-      graph.add(
-          ocean::make_ocean_node({.settings = scene.ocean,
-                                  .sun_glint = sun_up && options.terms.sun,
-                                  .sky = options.terms.sky,
-                                  .sea = options.terms.sea,
-                                  .air = options.terms.air,
-                                  .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
-                                  .sky_shrm = scene.ocean.sky_filter == "shrm",
-                                  .provider = provider,
-                                  .method = options.method,
-                                  .reference_sun_cells = reference_stratum_cells(options.reference),
-                                  .reference_cells_per_wavelength =
-                                      options.reference.sun_cells_per_wavelength,
-                                  .features = features}));
+      graph.add(ocean::make_ocean_node(
+          {.settings = scene.ocean,
+           .sun_glint = sun_up && options.terms.sun,
+           .sky = options.terms.sky,
+           .sea = options.terms.sea,
+           .air = options.terms.air,
+           .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
+           .sky_shrm = scene.ocean.sky_filter == "shrm",
+           .provider = provider,
+           .method = options.method,
+           .reference_sun_cells = reference_sun_cells(options.reference),
+           .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
+           .reference_sun_scatter = options.reference.sun_scatter,
+           .features = features}));
   }
 
   // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
@@ -233,7 +235,9 @@ struct Renderer::Impl {
   // sample k stands for stratum k mod s^2, at the point of it given by the Halton (2, 3) point
   // of round k / s^2, and the sample counts are whole rounds (multiples of s^2), so that every
   // stratum has as many samples and the average is a box filter over the pixel. The reference's
-  // sun integrates over the sample's stratum (shaders/ocean/reference_sun.glsl).
+  // sun integrates over the sample's stratum (shaders/ocean/reference_sun.glsl), or with
+  // sun_scatter is the same for every sample of a pixel (shaders/ocean/reference_sun_scatter.comp,
+  // computed once per image by the ocean node: its time is added once).
   //
   // A pixel's samples of the sky count as they fall (its coverage); its samples of the sea are
   // averaged with their visible-area weights (shaders/ocean/visible_area_weight.glsl), which the
@@ -250,13 +254,9 @@ struct Renderer::Impl {
       int resolved = 0;          // samples whose sun resolved every wave (the sky's count)
       // The sea's samples averaged with their weights (0 without any).
       glm::dvec3 sea_mean() const {
-        return weight > 0.0 ? weighted / weight
-               : sea > 0    ? plain / double(sea)
-                            : glm::dvec3(0.0);
+        return weight > 0.0 ? weighted / weight : sea > 0 ? plain / double(sea) : glm::dvec3(0.0);
       }
-      glm::dvec3 mean(int count) const {
-        return (sky + double(sea) * sea_mean()) / double(count);
-      }
+      glm::dvec3 mean(int count) const { return (sky + double(sea) * sea_mean()) / double(count); }
     };
     std::vector<PixelSums> sums(std::size_t(width) * height);
     auto row_totals = [&](int count) {
@@ -274,7 +274,7 @@ struct Renderer::Impl {
     samples = 0;
     sample_row_change = 0.0;
     const int least = std::min(reference.min_samples, max_samples);
-    // The strata the ocean node's per-stratum cell cap was set for (reference_stratum_cells).
+    // The strata the ocean node's per-stratum cell cap was set for (reference_sun_cells).
     const int strata = reference_strata(reference);
     const int round = strata * strata;
     max_samples = std::max(round, max_samples / round * round);
@@ -326,6 +326,7 @@ struct Renderer::Impl {
     inputs.pixel_offset = glm::dvec2(0.0);
     inputs.pixel_stratum = 1.0;
     samples = count;
+    ms += node_measurement("reference_sun.ms");
     std::vector<float> average(sums.size() * 4);
     for (std::size_t i = 0; i < sums.size(); ++i) {
       const glm::dvec3 p = sums[i].mean(count);
@@ -356,6 +357,14 @@ struct Renderer::Impl {
       sea_rgba[4 * i + 3] = float(double(p.sea) / count);
     }
     return ms;
+  }
+
+  // A node's measurement (gl::Node::measurements) by name; 0 when no node has it.
+  double node_measurement(const std::string& name) const {
+    for (const auto& node : graph.nodes())
+      for (const auto& [key, value] : node->measurements())
+        if (key == name) return value;
+    return 0.0;
   }
 
   // The reference's sea samples write |alpha| >= this (shaders/ocean/ocean_lighting.frag,
@@ -483,6 +492,11 @@ RenderStats Renderer::stats() const {
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
   stats.resolved_rows = m.resolved_rows;
+  stats.sun_lattice_row_change = m.node_measurement("reference_sun.lattice_row_change");
+  stats.sun_lattice_rows = static_cast<int>(m.node_measurement("reference_sun.lattice_rows"));
+  stats.sun_lattice_ms = m.node_measurement("reference_sun.ms");
+  stats.sun_lattice_hidden = m.node_measurement("reference_sun.hidden_fraction");
+  stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

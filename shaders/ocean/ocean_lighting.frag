@@ -35,6 +35,12 @@ layout(binding = 1) uniform sampler2D variances;
 // alpha 1 (planet/src/renderer.cpp, kReferenceSeaAlpha, reads it).
 const float REFERENCE_SEA_ALPHA = 2.0;
 #endif
+#ifdef REFERENCE_SUN_SCATTER
+// The reference's scattered sun, 4 floats per pixel (row-major from the bottom row) summed over
+// the sea's lattice by ocean/reference_sun_scatter.comp: sum omega sun, sum omega, the
+// unresolved part of sum omega, the hidden solid angle.
+layout(std430, binding = 7) readonly buffer ReferenceSunSums { float reference_sun[]; };
+#endif
 uniform vec2 downwind;                // unit, east-north-up
 uniform float fresnel_r;              // R of Schlick's Fresnel (eq. 14)
 uniform vec3 deep_reflectance;        // irradiance reflectance of the water body, per channel
@@ -143,8 +149,17 @@ void main() {
 #endif
 #ifdef SUN_GLINT
   // Sun (eq. 15): L_sun Omega_sun is the transmitted sun's irradiance on a surface facing it.
-#ifdef REFERENCE_SUN
-  // The reference's: integrated over the pixel's footprint by the first pass
+#if defined(REFERENCE_SUN_SCATTER)
+  // The reference's scattered sun: the solid-angle weighted mean over the sea the pixel sees
+  // (ocean/reference_sun_scatter.comp), the same for all the pixel's samples.
+  const int sun_index = 4 * (pixel.y * int(frame_viewport.x) + pixel.x);
+  const float sun_omega = reference_sun[sun_index + 1];
+  sea += light.sun_irradiance * (sun_omega > 0.0 ? reference_sun[sun_index] / sun_omega : 0.0);
+  // Resolved where at most half the pixel's sea came from footprints over the cell cap; a pixel
+  // no cell landed in is not.
+  const bool sun_resolved = sun_omega > 0.0 && reference_sun[sun_index + 2] <= 0.5 * sun_omega;
+#elif defined(REFERENCE_SUN)
+  // The reference's gathered sun: integrated over the sample's stratum by the first pass
   // (ocean/reference_sun.glsl).
   sea += light.sun_irradiance * variance.z;
 #else
@@ -165,8 +180,12 @@ void main() {
   // Renderer's draw_reference averages each pixel's sea samples with these weights, turns the
   // signs into each row's resolved fraction and restores alpha to 1.
   const float sample_code = REFERENCE_SEA_ALPHA + variance.x;
-  radiance = vec4(sea * transmittance + in_scattered,
-                  variance.y > 0.5 ? sample_code : -sample_code);
+#ifdef REFERENCE_SUN_SCATTER
+  const bool resolved = sun_resolved;
+#else
+  const bool resolved = variance.y > 0.5;
+#endif
+  radiance = vec4(sea * transmittance + in_scattered, resolved ? sample_code : -sample_code);
 #else
   radiance = vec4(sea * transmittance + in_scattered, 1.0);
 #endif

@@ -205,6 +205,20 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   const auto full = thalassa::read_image((dir_ / "full.exr").string());
   const auto reference = thalassa::read_image((dir_ / "reference.exr").string());
   EXPECT_NE(full.rgba, reference.rgba);
+  // The reference's sun scattered from a lattice (experimental) reports the lattice's measures;
+  // the gathered one does not.
+  ASSERT_EQ(run("render " + kSmall +
+                " --no-png --method reference --samples 4 --sun-scatter --sun-cells 8 -o "
+                "scatter.exr --stats scatter.json")
+                .status,
+            0);
+  std::ifstream in(dir_ / "scatter.json");
+  const auto scatter = nlohmann::json::parse(in);
+  EXPECT_GT(scatter["sun_lattice_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(scatter.contains("sun_lattice_row_change"));
+  EXPECT_TRUE(scatter.contains("sun_lattice_rows"));
+  std::ifstream gathered_in(dir_ / "reference.json");
+  EXPECT_FALSE(nlohmann::json::parse(gathered_in).contains("sun_lattice_ms"));
 }
 
 TEST_F(Cli, SceneFileAndSetOverride) {

@@ -88,6 +88,9 @@ class Node {
   // For the statistics: the waves this node summed as geometry or normals in its last frame,
   // at the pixel where it summed the most (0 for nodes without waves).
   virtual int resolved_waves() const { return 0; }
+  // For the statistics: named numbers of the node's last computation that the frame times do not
+  // show (the ocean's reference sun: its time and convergence), name without the node's prefix.
+  virtual std::vector<std::pair<std::string, double>> measurements() const { return {}; }
 };
 
 class SceneGraph {

@@ -1,0 +1,359 @@
+// The reference method's reflected sun (issue 6, point 1; Bruneton, Neyret & Holzschuch 2010,
+// sec. 7.2: "several normal samples per pixel - up to 512 - to correctly sample the Sun, which
+// occupies only 1/8000th of the hemisphere"), scattered from a lattice of the sea into the pixels
+// that see it. One pass per reference image, before its samples: the result does not depend on
+// where a sample falls in its pixel, so the sun adds no sampling noise at all, and its accuracy
+// is the lattice's (checked by refining it: ocean_node.cpp, lattice_row_change).
+//
+// Why not point samples. A mirror reflects the sun's 0.27 degree disc toward the eye only where
+// the slope lies in a disc of radius ~2.3e-3 around the mirror slope: about 7e-5 of a 10 m/s
+// sea's slopes. Averaging point-sampled normals converges as 1 / sqrt(hits): 256 samples per
+// pixel still changed an image row's sun by 96 % per doubling (stop 13).
+//
+// Why not gathered per pixel (stops 14-18). Integrating the sun over each sample's footprint on
+// the sea at rest (taken from the rasterised grid under the sample) puts every glint in the
+// pixel whose rest footprint holds it, not in the pixel where its displaced point is seen, and
+// the footprints of a pixel's samples neither tile the sea exactly nor stay put between sample
+// counts: the rows' totals still moved by 7.7 % per doubling at 32 samples (docs/validation.md).
+//
+// The lattice. Every pixel of the image, grown by `margin` pixels on each side, has a footprint
+// on the sea at rest: the quadrilateral of the sea at rest under its four corners' rays (a
+// corner whose ray misses the sea is put at the horizon's distance along it). Adjacent pixels
+// share their corners, so the footprints tile the sea in view exactly. Each footprint is cut
+// bilinearly into kx x ky cells no wider than `reference_spacing` (a fraction of the shortest
+// wave's length: every wave resolved, its slope nearly linear across a cell), at most
+// reference_max_cells per side (the cap: past it the cells are wider and the pixel is counted as
+// unresolved). On each cell, every wave (w_n = w_p = 1, calm areas and wakes included) gives the
+// four corners' displaced positions and exact normals; the slopes spread over the parallelogram
+// of slope space the corners span, and the sun the cell reflects is eq. 15 with that
+// parallelogram's density convolved with the sun's disc (OceanCellReflectedSun,
+// ocean/cell_slope_density.glsl: the cells' parallelograms tile slope space as the cells tile the
+// sea, so the sum over cells is the integral of delta(slope(x) - mirror slope) over the sea,
+// seen through the sun's disc).
+//
+// The scatter. Each cell adds (solid angle x its sun) to the pixel in which its glint's displaced
+// point is seen (the point of its bilinear patch whose slope is the mirror slope,
+// ReferenceGlintCoordinates), and its solid angle to the pixel of its displaced centre. A pixel's
+// sun is then sum(omega sun) / sum(omega): the solid-angle weighted mean of the sun over the sea
+// it sees, a box filter over the pixel. The lighting pass reads it (ocean_lighting.frag,
+// REFERENCE_SUN) and applies the sun's transmitted irradiance at each sample.
+//
+// Visibility. A cell facing away from the eye is hidden (omega = 0). Within a cell, Smith's
+// masking by its own slopes is in OceanCellReflectedSun. Between cells, the reference's grid (a
+// vertex per pixel, every wave displaced) has drawn its depth before this pass: a cell farther
+// than the farthest surface that grid shows in the cell's pixel is behind a crest and hidden.
+// That farthest depth is the pixel centre's plus half the way to any farther neighbour (the
+// pixel then straddles a crest's silhouette or a slope away from the eye) plus the heights of
+// the waves the grid cannot draw (shorter than 2 footprints), seen along the view. So crests of
+// waves longer than a pixel hide the sea behind them as they did for the gathered sun (stop 18);
+// the shorter waves' masking is Smith's within the cell only. Not hiding them made rows 10 to
+// 20 degrees below the horizon 10-30 % brighter (docs/validation.md): the glint's facets there
+// tilt away from the eye, onto the backs of the waves.
+//
+// Output: per pixel (window coordinates, row-major from the bottom row), four floats stored as
+// their bits in `sums` (atomic adds by compare-and-swap; GL has no float atomics): sum omega sun,
+// sum omega, the part of sum omega from footprints over the cap (unresolved), and the solid
+// angle of the cells hidden behind the grid's crests (not in sum omega).
+#include "common/definitions.glsl"
+#include "common/frame.glsl"
+#include "ocean/trochoids.glsl"
+#ifdef CALM_AREAS
+#include "ocean/calm_area.glsl"
+#endif
+#ifdef KELVIN_WAKES
+#include "ocean/local_waves.glsl"
+#endif
+#include "ocean/cell_slope_density.glsl"
+#include "ocean/reference_cell.glsl"
+
+// One invocation per row of cells of one footprint: (footprint, row) = (id / reference_max_cells,
+// id % reference_max_cells), id = first_invocation + gl_GlobalInvocationID.x.
+layout(local_size_x = 64) in;
+
+// Two vec4 per wave, longest first (see ocean_geometry.frag).
+layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
+// 4 per pixel of the image (see above): the bits of floats.
+layout(std430, binding = 7) coherent buffer ReferenceSunSums { uint sums[]; };
+
+uniform int wave_count;
+uniform vec2 downwind;  // unit, east-north-up
+uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighting.frag
+// m: the widest cell on the sea at rest that counts as resolved (ocean_node.cpp:
+// the shortest wavelength / cells per wavelength).
+uniform float reference_spacing;
+uniform int reference_max_cells;  // most cells per footprint side
+uniform int margin;               // pixels added beyond each edge of the image
+uniform uint first_invocation;    // of this dispatch (the CPU dispatches in batches)
+// m: a bound on the displacement of every wave together (sum of amplitudes), for the margin's
+// test below.
+uniform float max_displacement;
+// m: where a corner ray that misses the sea is put (the horizon's distance, as the lighting's).
+uniform float horizon_distance;
+// The grid's depth (reversed-Z, infinite far plane: OCEAN_NEAR_PLANE / forward distance; 0 where
+// it drew nothing) at the pixels' centres.
+layout(binding = 14) uniform sampler2D grid_depth;
+const float OCEAN_NEAR_PLANE = 0.01;  // m, ocean.vert's
+#ifdef KELVIN_WAKES
+uniform float n_min;  // of the wakes' filter weights (every wake wave resolved here)
+uniform float n_max;
+#endif
+
+// The pixel whose bits are accumulated before they are added to `sums` (consecutive cells
+// mostly land in one pixel), and what it holds.
+int held_pixel = -1;
+vec4 held = vec4(0.0);
+
+void AtomicAdd(uint index, float value) {
+  if (value == 0.0) return;
+  uint expected = sums[index];
+  for (;;) {  // every round, one of the contending invocations succeeds
+    const uint previous =
+        atomicCompSwap(sums[index], expected, floatBitsToUint(uintBitsToFloat(expected) + value));
+    if (previous == expected) return;
+    expected = previous;
+  }
+}
+
+void Flush() {
+  if (held_pixel >= 0) {
+    AtomicAdd(4u * uint(held_pixel), held.x);
+    AtomicAdd(4u * uint(held_pixel) + 1u, held.y);
+    AtomicAdd(4u * uint(held_pixel) + 2u, held.z);
+    AtomicAdd(4u * uint(held_pixel) + 3u, held.w);
+  }
+  held_pixel = -1;
+  held = vec4(0.0);
+}
+
+void Deposit(int pixel, vec4 value) {
+  if (pixel < 0) return;
+  if (pixel != held_pixel) {
+    Flush();
+    held_pixel = pixel;
+  }
+  held += value;
+}
+
+// The image's pixel (row-major from the bottom row) in which the point p (m, nadir frame) is
+// seen, or -1 outside the image or behind the eye.
+int PixelOf(vec3 p) {
+  const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
+  const float along = dot(d, frame_camera_forward.xyz);
+  if (!(along > 0.0)) return -1;
+  const vec2 ndc = vec2(dot(d, frame_camera_right.xyz) / frame_camera_right.w,
+                        dot(d, frame_camera_up.xyz) / frame_camera_up.w) / along;
+  const vec2 window = (ndc + 1.0) * 0.5 * frame_viewport.xy;
+  if (!(window.x >= 0.0 && window.y >= 0.0 && window.x < frame_viewport.x &&
+        window.y < frame_viewport.y))
+    return -1;
+  const ivec2 pixel = min(ivec2(window), ivec2(frame_viewport.xy) - 1);
+  return pixel.y * int(frame_viewport.x) + pixel.x;
+}
+
+// The forward distance (m) of the grid's surface at the pixel (x, y) of the image, clamped to
+// the image; +inf where the grid drew nothing.
+float GridAlong(ivec2 pixel) {
+  const float depth =
+      texelFetch(grid_depth, clamp(pixel, ivec2(0), ivec2(frame_viewport.xy) - 1), 0).r;
+  return depth > 0.0 ? OCEAN_NEAR_PLANE / depth : 1.0 / 0.0;
+}
+
+// Whether the displaced point p (m, nadir frame), seen in pixel `pixel` (PixelOf), lies no
+// farther than the farthest surface the grid shows in that pixel, give or take `unresolved_height`
+// (m: the heights of the waves the grid cannot draw) along the view.
+bool GridShows(vec3 p, int pixel, float unresolved_height) {
+  const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
+  const float along = dot(d, frame_camera_forward.xyz);
+  const ivec2 xy = ivec2(pixel % int(frame_viewport.x), pixel / int(frame_viewport.x));
+  const float centre = GridAlong(xy);
+  if (isinf(centre)) return true;
+  float farthest = centre;
+  for (int k = 0; k < 4; ++k) {
+    const ivec2 o = k == 0 ? ivec2(1, 0) : k == 1 ? ivec2(-1, 0) : k == 2 ? ivec2(0, 1) : ivec2(0, -1);
+    const float neighbour = GridAlong(xy + o);
+    if (!isinf(neighbour)) farthest = max(farthest, 0.5 * (centre + neighbour));
+  }
+  // A height h moves the surface along the view by h / sin(elevation of the view).
+  const float sine = max(-d.z / max(length(d), 1e-6), 0.05);
+  return along <= farthest + unresolved_height / sine;
+}
+
+// The rest point (m, nadir frame) seen through the window position w (pixels, unshifted by the
+// frame's pixel offset: the lattice is the same for every sample), and whether the ray met the
+// sea (false: the point at the horizon's distance along it, dropped onto the sea at rest).
+vec3 RestCorner(vec2 w, out bool hit) {
+  const vec2 ndc = w * frame_viewport.zw * 2.0 - 1.0;
+  const vec3 ray = normalize(frame_camera_forward.xyz +
+                             ndc.x * frame_camera_right.w * frame_camera_right.xyz +
+                             ndc.y * frame_camera_up.w * frame_camera_up.xyz);
+  const float distance = FrameSeaDistance(ray);
+  hit = distance >= 0.0;
+  const vec3 p = vec3(0.0, 0.0, FrameCameraHeight()) + (hit ? distance : horizon_distance) * ray;
+  return vec3(p.x, p.y, ReferenceRestHeight(frame_sea_curvature, vec2(p.x, p.y)));
+}
+
+// One lattice corner at the rest point's horizontal position xy (m, nadir frame): its displaced
+// position (m, nadir frame), its displaced area vector per unit rest area d_dx x d_dy (nadir
+// frame) and that vector in its own tangent frame scaled to unit z (the facet normal f of
+// ReferenceCellFrameSlope: (-zeta, 1) in the rest tangent frame), turned into the nadir frame.
+struct Corner {
+  vec3 position;
+  vec3 area;
+  vec3 facet;
+};
+
+Corner ReferenceCorner(vec2 xy) {
+  const vec3 x = vec3(xy, ReferenceRestHeight(frame_sea_curvature, xy));
+  vec3 displacement = vec3(0.0);
+  vec3 d_dx = vec3(0.0), d_dy = vec3(0.0);
+  for (int i = 0; i < wave_count; ++i) {
+    const vec4 a = waves[2 * i];
+    const vec4 b = waves[2 * i + 1];
+    const vec2 direction = vec2(a.x, a.y);
+    const float argument = TrochoidArgument(a.z * direction, b.x, xy);
+    displacement += TrochoidDisplacement(direction, a.w, argument);
+    vec3 wave_dx, wave_dy;
+    TrochoidDisplacementDerivatives(direction, a.z, a.w, argument, wave_dx, wave_dy);
+    d_dx += wave_dx;
+    d_dy += wave_dy;
+  }
+#ifdef CALM_AREAS
+  const float calm = CalmAmplitudeScale(xy);  // issue 9: every wave's h scaled by s
+  displacement *= calm;
+  d_dx *= calm;
+  d_dy *= calm;
+#endif
+  d_dx += vec3(1.0, 0.0, 0.0);
+  d_dy += vec3(0.0, 1.0, 0.0);
+#ifdef KELVIN_WAKES
+  // The wakes' waves, every one resolved (a vanishing cell gives w_p = w_n = 1, w_r = 0).
+  displacement += LocalWavesDisplacement(xy, 1e-6, n_min, n_max, 1.0);
+  vec2 no_variance = vec2(0.0);
+  LocalWavesNormals(xy, 1e-6, n_min, n_max, 1.0, vec2(1.0, 0.0), d_dx, d_dy, no_variance);
+#endif
+  const mat3 frame = FrameSeaTangentFrame(x);
+  const vec3 n_local = cross(d_dx, d_dy);
+  Corner corner;
+  corner.position = x + frame * displacement;
+  corner.area = frame * n_local;
+  corner.facet = frame * vec3(n_local.xy / max(n_local.z, 1e-6), 1.0);
+  return corner;
+}
+
+// One cell of corners c00, c10 (along u), c01 (along v), c11 and rest area rest_area (m^2): its
+// deposits. unresolved: 1 if its footprint is over the cap, else 0.
+void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area,
+                 float unresolved, float unresolved_height) {
+  const vec3 centre = 0.25 * (c00.position + c10.position + c01.position + c11.position);
+  const vec3 to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - centre;
+  const float omega =
+      ReferenceCellSolidAngle(0.25 * (c00.area + c10.area + c01.area + c11.area), rest_area,
+                              to_eye);
+  if (!(omega > 0.0)) return;
+  const vec3 v = normalize(to_eye);
+  const vec3 l = FrameSunDirection();
+  vec3 n = normalize(c00.facet + c10.facet + c01.facet + c11.facet);
+  if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
+  const vec3 wind = vec3(downwind, 0.0);
+  const vec3 t_x = normalize(wind - dot(wind, n) * n);
+  const vec3 t_y = cross(n, t_x);
+  const vec2 z00 = ReferenceCellFrameSlope(c00.facet, t_x, t_y, n);
+  const vec2 z10 = ReferenceCellFrameSlope(c10.facet, t_x, t_y, n);
+  const vec2 z01 = ReferenceCellFrameSlope(c01.facet, t_x, t_y, n);
+  const vec2 z11 = ReferenceCellFrameSlope(c11.facet, t_x, t_y, n);
+  const vec2 c = 0.25 * (z00 + z10 + z01 + z11);
+  const vec2 d_u = 0.5 * ((z10 - z00) + (z11 - z01));
+  const vec2 d_v = 0.5 * ((z01 - z00) + (z11 - z10));
+  const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
+  const vec3 l_t = OceanToTangentFrame(l, t_x, t_y, n);
+  const float sun = OceanCellReflectedSun(v_t, l_t, c, d_u, d_v, fresnel_r);
+  const int centre_pixel = PixelOf(centre);
+  if (centre_pixel < 0) return;
+  if (!GridShows(centre, centre_pixel, unresolved_height)) {
+    Deposit(centre_pixel, vec4(0.0, 0.0, 0.0, omega));
+    return;
+  }
+  if (sun > 0.0) {
+    // The mirror slope: that of the half vector, (-h_x, -h_y) / h_z.
+    const vec3 h = normalize(v_t + l_t);
+    const vec2 mirror = -vec2(h.x, h.y) / max(h.z, 1e-6);
+    const vec2 uv = ReferenceGlintCoordinates(c, d_u, d_v, mirror);
+    const int glint_pixel =
+        PixelOf(ReferenceBilinear(c00.position, c10.position, c01.position, c11.position, uv));
+    Deposit(glint_pixel, vec4(omega * sun, 0.0, 0.0, 0.0));
+  }
+  Deposit(centre_pixel, vec4(0.0, omega, omega * unresolved, 0.0));
+}
+
+void main() {
+  const int cap = max(reference_max_cells, 1);
+  const uint id = first_invocation + gl_GlobalInvocationID.x;
+  const int columns = int(frame_viewport.x) + 2 * margin;
+  const int rows = int(frame_viewport.y) + 2 * margin;
+  const uint footprint = id / uint(cap);
+  const int j = int(id % uint(cap));
+  if (footprint >= uint(columns * rows)) return;
+  const vec2 pixel = vec2(float(int(footprint) % columns - margin),
+                          float(int(footprint) / columns - margin));
+  bool h00, h10, h01, h11;
+  const vec3 q00 = RestCorner(pixel, h00);
+  const vec3 q10 = RestCorner(pixel + vec2(1.0, 0.0), h10);
+  const vec3 q01 = RestCorner(pixel + vec2(0.0, 1.0), h01);
+  const vec3 q11 = RestCorner(pixel + vec2(1.0, 1.0), h11);
+  if (!(h00 || h10 || h01 || h11)) return;  // the sky's pixel
+  // A margin pixel whose sea no wave can move into the image: the farthest a point at forward
+  // distance `along` moves on screen is about max_displacement / along / (the image's tan per
+  // pixel), doubled for the projection's change with depth.
+  const vec2 outside = max(max(-pixel - 1.0, pixel - frame_viewport.xy), vec2(0.0));
+  if (outside.x > 0.0 || outside.y > 0.0) {
+    const vec3 eye = vec3(0.0, 0.0, FrameCameraHeight());
+    const float along = max(min(min(dot(q00 - eye, frame_camera_forward.xyz),
+                                    dot(q10 - eye, frame_camera_forward.xyz)),
+                                min(dot(q01 - eye, frame_camera_forward.xyz),
+                                    dot(q11 - eye, frame_camera_forward.xyz))),
+                            1e-3);
+    const float reach = 2.0 * max_displacement / along * 0.5 * frame_viewport.y / frame_camera_up.w;
+    if (max(outside.x, outside.y) > reach + 1.0) return;
+  }
+  // Cells per side: no wider than the spacing, at most the cap.
+  const float spacing = max(reference_spacing, 1e-6);
+  const float want_x = ceil(max(distance(q00, q10), distance(q01, q11)) / spacing);
+  const float want_y = ceil(max(distance(q00, q01), distance(q10, q11)) / spacing);
+  const int kx = int(clamp(want_x, 1.0, float(cap)));
+  const int ky = int(clamp(want_y, 1.0, float(cap)));
+  if (j >= ky) return;
+  const float unresolved = (want_x <= float(cap) && want_y <= float(cap)) ? 0.0 : 1.0;
+  // The heights of the waves the grid (a vertex per pixel) cannot draw: shorter than 2
+  // footprints (the wakes' are not counted).
+  const float footprint_size = max(max(distance(q00, q10), distance(q01, q11)),
+                                   max(distance(q00, q01), distance(q10, q11)));
+  float unresolved_height = 0.0;
+  for (int i = 0; i < wave_count; ++i)
+    if (waves[2 * i + 1].y < 2.0 * footprint_size) unresolved_height += waves[2 * i].w;
+  // The rows j and j + 1 of corners, left to right, two corners at a time.
+  const float v0 = float(j) / float(ky), v1 = float(j + 1) / float(ky);
+  const vec2 a0 = mix(q00.xy, q01.xy, v0), b0 = mix(q10.xy, q11.xy, v0);
+  const vec2 a1 = mix(q00.xy, q01.xy, v1), b1 = mix(q10.xy, q11.xy, v1);
+  Corner low = ReferenceCorner(a0);
+  Corner high = ReferenceCorner(a1);
+  vec3 low_rest = vec3(a0, ReferenceRestHeight(frame_sea_curvature, a0));
+  vec3 high_rest = vec3(a1, ReferenceRestHeight(frame_sea_curvature, a1));
+  for (int i = 1; i <= kx; ++i) {
+    const float u = float(i) / float(kx);
+    const vec2 low_xy = mix(a0, b0, u), high_xy = mix(a1, b1, u);
+    const Corner next_low = ReferenceCorner(low_xy);
+    const Corner next_high = ReferenceCorner(high_xy);
+    const vec3 next_low_rest = vec3(low_xy, ReferenceRestHeight(frame_sea_curvature, low_xy));
+    const vec3 next_high_rest = vec3(high_xy, ReferenceRestHeight(frame_sea_curvature, high_xy));
+    // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
+    const vec3 e_u = 0.5 * ((next_low_rest - low_rest) + (next_high_rest - high_rest));
+    const vec3 e_v = 0.5 * ((high_rest - low_rest) + (next_high_rest - next_low_rest));
+    ScatterCell(low, next_low, high, next_high, length(cross(e_u, e_v)), unresolved,
+                unresolved_height);
+    low = next_low;
+    high = next_high;
+    low_rest = next_low_rest;
+    high_rest = next_high_rest;
+  }
+  Flush();
+}
