@@ -24,12 +24,12 @@ struct RenderArgs {
   std::string backend;  // empty: the default headless backend
   int repeat = 1;
   bool float_exr = false;
-  std::string terms = "sun,sky,sea,air";  // the ocean's light terms, any subset
-  std::string method = "full";            // the ocean's shading method (ocean/method.hpp)
-  int samples = 1024;                     // the reference's most samples per pixel
-  int sun_cells = 256;                    // the reference's sun: most cells per pixel side
-  double sun_cells_per_wavelength = 16;   // the reference's sun: cells per shortest wavelength
-  bool sun_scatter = false;  // the reference's sun scattered from a lattice (experimental)
+  std::string terms = "sun,sky,sea,air";    // the ocean's light terms, any subset
+  std::string method = "full";              // the ocean's shading method (ocean/method.hpp)
+  int samples = 1024;                       // the reference's most samples per pixel
+  int sun_cells = 256;                      // the reference's sun: most cells per pixel side
+  double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
+  std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
 };
 
 struct SkyArgs {

@@ -24,6 +24,7 @@ std::string stats_json(const RenderStats& stats) {
   json["method"] = stats.method;
   json["samples"] = stats.samples;
   json["sample_row_change"] = stats.sample_row_change;
+  if (!stats.reference_sun.empty()) json["reference_sun"] = stats.reference_sun;
   if (stats.method == "reference" && stats.sun_lattice_ms > 0.0) {
     json["sun_lattice_row_change"] = stats.sun_lattice_row_change;
     json["sun_lattice_rows"] = stats.sun_lattice_rows;
@@ -77,21 +78,27 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   render
+      ->add_option("--reference-sun", args.reference_sun,
+                   "How the reference integrates the sun over cells of the sea: scattered (once "
+                   "per image from a lattice of the sea, each cell's glint added to the pixel "
+                   "that sees it: no noise between sample counts, and independent of the "
+                   "resolution) or gathered (per sample over its pixel stratum; kept to compare "
+                   "with, docs/validation.md)")
+      ->check(CLI::IsMember({"scattered", "gathered"}))
+      ->capture_default_str();
+  render
       ->add_option("--sun-cells", args.sun_cells,
-                   "The reference's sun: the most cells per pixel side, at most 64 per side of "
-                   "each of its s x s strata (1024 per pixel with --sun-scatter); rows that need "
-                   "more are reported unresolved in --stats resolved_rows")
+                   "The reference's sun: the most cells per pixel side (gathered: at most 64 per "
+                   "side of each of its s x s strata); rows that need more are reported "
+                   "unresolved in --stats resolved_rows")
       ->check(CLI::Range(1, 1024))
       ->capture_default_str();
   render
       ->add_option("--sun-cells-per-wavelength", args.sun_cells_per_wavelength,
                    "The reference's sun: cells per shortest wavelength (finer is more accurate "
-                   "and costs the square)")
+                   "and costs the square; scattered, --stats sun_lattice_row_change measures it)")
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
-  render->add_flag("--sun-scatter", args.sun_scatter,
-                   "Experimental: the reference's sun scattered once per image from a lattice of "
-                   "the sea, with no noise between sample counts (docs/validation.md)");
 }
 
 int run_render(const RenderArgs& args) {
@@ -114,7 +121,7 @@ int run_render(const RenderArgs& args) {
       std::min(renderer_options.reference.min_samples, args.samples);
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
-  renderer_options.reference.sun_scatter = args.sun_scatter;
+  renderer_options.reference.sun = *parse_reference_sun(args.reference_sun);  // CLI11 checked
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight
           ? "--method " + args.method +

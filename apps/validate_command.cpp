@@ -4,11 +4,11 @@
 // exit status 2 are checked to be refused with their message; the others to render finite
 // images. The command's own exit status: 0 when every case ended as it expected, 1 otherwise
 // (or at run time), 2 for a bad suite or bad options.
+#include <fnmatch.h>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fnmatch.h>
 #include <map>
 
 #include "commands.hpp"
@@ -154,6 +154,8 @@ class CaseRunner {
           reference_images[{job.against, term}] = rendered;
           if (suite_.reference.check_convergence)
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
+          if (rendered.stats.sun_lattice_ms > 0.0)
+            m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_row_change);
           const std::vector<double>& rows = rendered.stats.resolved_rows;
           if (!rows.empty())
             m.resolved_rows.emplace_back(term,
@@ -172,8 +174,7 @@ class CaseRunner {
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
             if (against.size() == rendered.frames.size())
-              t.temporal_error =
-                  validation::temporal_error(rendered.compared, against, compared);
+              t.temporal_error = validation::temporal_error(rendered.compared, against, compared);
           }
         }
         m.terms.push_back(std::move(t));
@@ -195,6 +196,7 @@ class CaseRunner {
     options.reference.min_samples = std::min(options.reference.min_samples, most);
     options.reference.sun_cells = reference.sun_cells();
     options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
+    options.reference.sun = *parse_reference_sun(reference.sun);  // the suite's parser checked
     const bool over_time = suite_.flicker.frames >= 2 &&
                            std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),
                                      term) != suite_.flicker.terms.end();
@@ -298,8 +300,8 @@ void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
     if (!any) {
       std::string names;
       for (const SuiteCase& c : suite.cases) names += (names.empty() ? "" : ", ") + c.name;
-      throw SceneError("--case: expected the name or pattern of a case of " + suite.source +
-                       " (" + names + "), got \"" + p + "\"");
+      throw SceneError("--case: expected the name or pattern of a case of " + suite.source + " (" +
+                       names + "), got \"" + p + "\"");
     }
   }
   suite.cases = std::move(kept);

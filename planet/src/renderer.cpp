@@ -91,12 +91,22 @@ int reference_strata(const ReferenceSampling& r) {
 // the scatter, sun_cells per pixel side; gathered, sun_cells per pixel side shared among the s
 // strata of a side, at most 64 (the shader's row buffer).
 int reference_sun_cells(const ReferenceSampling& r) {
-  if (r.sun_scatter) return r.sun_cells;
+  if (r.sun == ReferenceSun::scattered) return r.sun_cells;
   const int strata = reference_strata(r);
   return std::clamp((r.sun_cells + strata - 1) / strata, 1, 64);
 }
 
 }  // namespace
+
+std::optional<ReferenceSun> parse_reference_sun(std::string_view name) {
+  if (name == "scattered") return ReferenceSun::scattered;
+  if (name == "gathered") return ReferenceSun::gathered;
+  return std::nullopt;
+}
+
+const char* reference_sun_name(ReferenceSun sun) {
+  return sun == ReferenceSun::scattered ? "scattered" : "gathered";
+}
 
 void check_drawable(const Scene& scene, const std::string& source) {
   std::error_code error;
@@ -205,7 +215,7 @@ struct Renderer::Impl {
            .method = options.method,
            .reference_sun_cells = reference_sun_cells(options.reference),
            .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
-           .reference_sun_scatter = options.reference.sun_scatter,
+           .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
            .features = features}));
   }
 
@@ -235,9 +245,10 @@ struct Renderer::Impl {
   // sample k stands for stratum k mod s^2, at the point of it given by the Halton (2, 3) point
   // of round k / s^2, and the sample counts are whole rounds (multiples of s^2), so that every
   // stratum has as many samples and the average is a box filter over the pixel. The reference's
-  // sun integrates over the sample's stratum (shaders/ocean/reference_sun.glsl), or with
-  // sun_scatter is the same for every sample of a pixel (shaders/ocean/reference_sun_scatter.comp,
-  // computed once per image by the ocean node: its time is added once).
+  // sun, scattered (the default), is the same for every sample of a pixel
+  // (shaders/ocean/reference_sun_scatter.comp, computed once per image by the ocean node: its
+  // time is added once); gathered, it integrates over the sample's stratum
+  // (shaders/ocean/reference_sun.glsl).
   //
   // A pixel's samples of the sky count as they fall (its coverage); its samples of the sea are
   // averaged with their visible-area weights (shaders/ocean/visible_area_weight.glsl), which the
@@ -491,6 +502,8 @@ RenderStats Renderer::stats() const {
   stats.method = std::string(ocean::method_name(m.renderer_options.method));
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
+  if (m.renderer_options.method == ocean::OceanMethod::reference && m.renderer_options.terms.sun)
+    stats.reference_sun = reference_sun_name(m.renderer_options.reference.sun);
   stats.resolved_rows = m.resolved_rows;
   stats.sun_lattice_row_change = m.node_measurement("reference_sun.lattice_row_change");
   stats.sun_lattice_rows = static_cast<int>(m.node_measurement("reference_sun.lattice_rows"));

@@ -205,20 +205,28 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   const auto full = thalassa::read_image((dir_ / "full.exr").string());
   const auto reference = thalassa::read_image((dir_ / "reference.exr").string());
   EXPECT_NE(full.rgba, reference.rgba);
-  // The reference's sun scattered from a lattice (experimental) reports the lattice's measures;
-  // the gathered one does not.
+  // The reference's sun is scattered from a lattice by default and reports the lattice's
+  // measures; gathered, it reports none.
+  std::ifstream scattered_in(dir_ / "reference.json");
+  const auto scattered = nlohmann::json::parse(scattered_in);
+  EXPECT_EQ(scattered["reference_sun"], "scattered");
+  EXPECT_GT(scattered["sun_lattice_ms"].get<double>(), 0.0);
+  EXPECT_TRUE(scattered.contains("sun_lattice_row_change"));
+  EXPECT_TRUE(scattered.contains("sun_lattice_rows"));
   ASSERT_EQ(run("render " + kSmall +
-                " --no-png --method reference --samples 4 --sun-scatter --sun-cells 8 -o "
-                "scatter.exr --stats scatter.json")
+                " --no-png --method reference --samples 4 --reference-sun gathered --sun-cells 8 "
+                "-o gathered.exr --stats gathered.json")
                 .status,
             0);
-  std::ifstream in(dir_ / "scatter.json");
-  const auto scatter = nlohmann::json::parse(in);
-  EXPECT_GT(scatter["sun_lattice_ms"].get<double>(), 0.0);
-  EXPECT_TRUE(scatter.contains("sun_lattice_row_change"));
-  EXPECT_TRUE(scatter.contains("sun_lattice_rows"));
-  std::ifstream gathered_in(dir_ / "reference.json");
-  EXPECT_FALSE(nlohmann::json::parse(gathered_in).contains("sun_lattice_ms"));
+  std::ifstream gathered_in(dir_ / "gathered.json");
+  const auto gathered = nlohmann::json::parse(gathered_in);
+  EXPECT_EQ(gathered["reference_sun"], "gathered");
+  EXPECT_FALSE(gathered.contains("sun_lattice_ms"));
+  std::ifstream full_in(dir_ / "full.json");
+  EXPECT_FALSE(nlohmann::json::parse(full_in).contains("reference_sun"));
+  const Result wrong = run("render " + kSmall + " --method reference --reference-sun both");
+  EXPECT_EQ(wrong.status, 2);
+  EXPECT_NE(wrong.err.find("--reference-sun"), std::string::npos) << wrong.err;
 }
 
 TEST_F(Cli, SceneFileAndSetOverride) {

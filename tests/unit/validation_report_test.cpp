@@ -114,6 +114,7 @@ Report synthetic_report() {
   report.reference.pixel_samples_without_sun = 512;
   report.reference.sun_normal_samples = 4096;
   report.reference.sun_cells_per_wavelength = 12.5;
+  report.reference.sun = "gathered";  // not the default: read back as written
   report.version = "0.1.0";
   CaseResult c;
   c.name = "wind10_100m_low_sun";
@@ -146,7 +147,10 @@ Report synthetic_report() {
       }
       r.terms.push_back(std::move(t));
     }
-    if (r.method == "reference") r.convergence = {{"sun", 0.004}, {"all", 0.0071}};
+    if (r.method == "reference") {
+      r.convergence = {{"sun", 0.004}, {"all", 0.0071}};
+      r.lattice_convergence = {{"sun", 0.018}, {"all", 0.0175}};
+    }
     c.methods.push_back(std::move(r));
   }
   report.cases.push_back(c);
@@ -209,6 +213,8 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_NE(index.find("href=\"" + t.exr + "\""), std::string::npos) << t.exr;
   }
   EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
+  EXPECT_NE(index.find("its sun gathered in cells"), std::string::npos);
+  EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%;"), std::string::npos);
   EXPECT_EQ(index.find("<markup>"), std::string::npos);
   EXPECT_EQ(index.find("=\"/"), std::string::npos);  // no absolute link
   // The row plot has the plain methods' curves only; the error plot every method but the
@@ -303,6 +309,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.reference.pixel_samples_without_sun, report.reference.pixel_samples_without_sun);
   EXPECT_EQ(back.reference.sun_normal_samples, report.reference.sun_normal_samples);
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
+  EXPECT_EQ(back.reference.sun, report.reference.sun);
   ASSERT_EQ(back.cases.size(), 2u);
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());
@@ -317,6 +324,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     EXPECT_EQ(a.name, b.name);
     EXPECT_EQ(a.plain, b.plain);
     EXPECT_EQ(a.convergence, b.convergence);
+    EXPECT_EQ(a.lattice_convergence, b.lattice_convergence);
     ASSERT_EQ(a.terms.size(), b.terms.size());
     for (std::size_t ti = 0; ti < a.terms.size(); ++ti) {
       const TermResult &x = a.terms[ti], &w = b.terms[ti];

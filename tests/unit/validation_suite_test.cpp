@@ -56,6 +56,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   EXPECT_GE(suite.flicker.frames, 2);
   // The sky's and the refracted light's reference is cheap: it gets more samples than the sun's.
   EXPECT_GT(suite.reference.pixel_samples_without_sun, suite.reference.pixel_samples);
+  EXPECT_EQ(suite.reference.sun, "scattered");  // the default: independent of the resolution
   // Every combination of wind, camera height and sun of issue 6, point 4, once; each case's
   // scene (and with each variant) builds.
   std::set<std::tuple<double, double, double>> seen;
@@ -346,6 +347,8 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
            ok_case + "]}",
        "t.json: reference.pixel_samples_without_sun: expected an integer in [1, 4096], got "
        "8192"},
+      {R"({"suite": "s", "reference": {"sun": "sampled"}, "cases": [)" + ok_case + "]}",
+       "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
       {R"({"suite": "s", "horizon": {"depth_deg": 5, "bin_deg": 6}, "cases": [)" + ok_case + "]}",
        "t.json: horizon.bin_deg: expected a number in (0, 5] (degrees; at most depth_deg), got 6"},
       {R"({"suite": "s", "base": {"image.width": 0}, "cases": [)" + ok_case + "]}",

@@ -259,8 +259,8 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
         "lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
       script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(3 + 2 * i) +
-                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" +
-                curves[i].first + "'";
+                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" + curves[i].first +
+                "'";
   } else {
     script +=
         "set label 1 'no row measured (no row resolved by the reference, or none lit)' at graph "
@@ -518,10 +518,10 @@ std::string index_html(const Report& report,
        " samples per pixel" +
        (without_sun > 0 ? " (" + std::to_string(without_sun) + " for the terms without the sun)"
                         : std::string()) +
-       ", doubling from 16 while a row's total changes by 1 % or more; its "
-       "sun in cells of at most 1/" + short_number(report.reference.sun_cells_per_wavelength) +
-       " of the shortest wavelength, at most " +
-       std::to_string(report.reference.sun_cells()) +
+       ", doubling from 16 while a row's total changes by 1 % or more; its sun " +
+       html(report.reference.sun) + " in cells of at most 1/" +
+       short_number(report.reference.sun_cells_per_wavelength) +
+       " of the shortest wavelength, at most " + std::to_string(report.reference.sun_cells()) +
        " per pixel side.</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
@@ -582,10 +582,9 @@ std::string index_html(const Report& report,
       for (const TermResult& t : m.terms) {
         const MethodResult* against = measured_against(c, m);
         const TermResult* rt = against ? term_of(*against, t.term) : nullptr;
-        const std::string name =
-            against && against != ref && against != &m
-                ? m.name + " (against " + against->name + ")"
-                : m.name;
+        const std::string name = against && against != ref && against != &m
+                                     ? m.name + " (against " + against->name + ")"
+                                     : m.name;
         h += "<tr><td class=\"t\">" + html(name) + "</td><td class=\"t\">" + html(t.term) +
              "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
              (t.samples > 0 ? std::to_string(t.samples) : std::string("-")) + "</td><td>" +
@@ -606,6 +605,13 @@ std::string index_html(const Report& report,
       if (!r.convergence.empty()) {
         h += "<p>" + html(which) + " convergence (largest row change at twice the samples):";
         for (const auto& [term, change] : r.convergence)
+          h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
+        h += "</p>\n";
+      }
+      if (!r.lattice_convergence.empty()) {
+        h += "<p>" + html(which) +
+             " sun's convergence (largest row change from a lattice of half the cells):";
+        for (const auto& [term, change] : r.lattice_convergence)
           h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
         h += "</p>\n";
       }
@@ -657,6 +663,7 @@ std::string report_json(const Report& report) {
                     {"pixel_samples_without_sun", report.reference.pixel_samples_without_sun},
                     {"sun_normal_samples", report.reference.sun_normal_samples},
                     {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
+                    {"sun", report.reference.sun},
                     {"check_convergence", report.reference.check_convergence}};
   j["suite_cases"] = std::max(report.suite_cases, static_cast<int>(report.cases.size()));
   j["cases"] = ojson::array();
@@ -681,6 +688,11 @@ std::string report_json(const Report& report) {
       jm["reference"] = m.reference;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
+      if (!m.lattice_convergence.empty()) {
+        jm["lattice_convergence"] = ojson::object();
+        for (const auto& [term, change] : m.lattice_convergence)
+          jm["lattice_convergence"][term] = change;
+      }
       jm["resolved_rows"] = ojson::object();
       for (const auto& [term, rows] : m.resolved_rows) jm["resolved_rows"][term] = rows;
       jm["terms"] = ojson::array();
@@ -746,6 +758,7 @@ Report report_from_json(const std::string& json_text) {
     report.reference.pixel_samples_without_sun = jr.value("pixel_samples_without_sun", 0);
     report.reference.sun_normal_samples = jr.at("sun_normal_samples");
     report.reference.sun_cells_per_wavelength = get_number(jr.at("sun_cells_per_wavelength"));
+    report.reference.sun = jr.value("sun", std::string("gathered"));  // older reports gathered
     report.reference.check_convergence = jr.at("check_convergence");
   }
   for (const ojson& jc : j.at("cases")) {
@@ -766,6 +779,9 @@ Report report_from_json(const std::string& json_text) {
       m.reference = jm.value("reference", std::string());
       for (const auto& [term, change] : jm.at("convergence").items())
         m.convergence.push_back({term, get_number(change)});
+      if (jm.contains("lattice_convergence"))
+        for (const auto& [term, change] : jm.at("lattice_convergence").items())
+          m.lattice_convergence.push_back({term, get_number(change)});
       if (jm.contains("resolved_rows"))
         for (const auto& [term, rows] : jm.at("resolved_rows").items())
           m.resolved_rows.push_back({term, rows.get<int>()});

@@ -309,8 +309,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     // An own reference is reported as the method "reference_<variant>": no method may have
     // that name.
     for (std::size_t i = 0; i < suite.methods.size(); ++i)
-      if (suite.methods[i].own_reference &&
-          suite.find_method("reference_" + suite.methods[i].name))
+      if (suite.methods[i].own_reference && suite.find_method("reference_" + suite.methods[i].name))
         fail(source, "methods[" + std::to_string(i) + "].own_reference",
              "no method named \"reference_" + suite.methods[i].name +
                  "\" (the name of its own reference)",
@@ -347,11 +346,15 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     if (!r.is_object())
       fail(source, "reference",
            "an object {\"pixel_samples\", \"pixel_samples_without_sun\", "
-           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"check_convergence\"}",
+           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"sun\", "
+           "\"check_convergence\"}",
            describe(r));
-    static constexpr std::string_view kReferenceKeys[] = {
-        "pixel_samples", "pixel_samples_without_sun", "sun_normal_samples",
-        "sun_cells_per_wavelength", "check_convergence"};
+    static constexpr std::string_view kReferenceKeys[] = {"pixel_samples",
+                                                          "pixel_samples_without_sun",
+                                                          "sun_normal_samples",
+                                                          "sun_cells_per_wavelength",
+                                                          "sun",
+                                                          "check_convergence"};
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
       suite.reference.pixel_samples =
@@ -364,8 +367,14 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
           integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);
     if (r.contains("sun_cells_per_wavelength"))
       suite.reference.sun_cells_per_wavelength =
-          number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength",
-                    1, 64, "cells", false);
+          number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength", 1,
+                    64, "cells", false);
+    if (r.contains("sun")) {
+      const json& sun = r["sun"];
+      if (!sun.is_string() || (sun != "scattered" && sun != "gathered"))
+        fail(source, "reference.sun", "\"scattered\" or \"gathered\"", describe(sun));
+      suite.reference.sun = sun.get<std::string>();
+    }
     if (r.contains("check_convergence"))
       suite.reference.check_convergence =
           bool_at(r["check_convergence"], source, "reference.check_convergence");

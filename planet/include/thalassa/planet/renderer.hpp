@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -45,7 +46,10 @@ struct RenderStats {
   // (its convergence test); 1 sample and 0 for the other methods.
   int samples = 1;
   double sample_row_change = 0.0;
-  // The reference method with the sun scattered (ReferenceSampling::sun_scatter), else 0: the
+  // The reference method with the sun term: how its sun was integrated, "scattered" or
+  // "gathered" (ReferenceSun); empty otherwise.
+  std::string reference_sun;
+  // The reference method with the sun scattered (ReferenceSun::scattered), else 0: the
   // largest relative change of an image row's total sun between its lattice and one with half
   // the cells (the sun's convergence test: its "normal samples",
   // shaders/ocean/reference_sun_scatter.comp), measured on the sun_lattice_rows rows whose sea
@@ -79,6 +83,30 @@ struct LightTerms {
   bool air = true;
 };
 
+// How the reference's reflected sun is integrated (ReferenceSampling). Its 0.27 degree disc would
+// need millions of point samples per pixel, so both integrate it over cells of the sea no wider
+// than the shortest wavelength / sun_cells_per_wavelength, each a bilinear patch of exact normals
+// whose glint is the sun's parallelogram (shaders/ocean/reference_cell.glsl).
+enum class ReferenceSun {
+  // Once per image: each pixel's footprint on the sea at rest is cut into a lattice of cells (at
+  // most sun_cells per pixel side, [1, 1024]) and each cell's sun is added to the pixel that sees
+  // its glint (shaders/ocean/reference_sun_scatter.comp). The same for every sample: the sun
+  // adds no noise between sample counts, and its convergence is measured instead against a
+  // lattice of half the cells (RenderStats::sun_lattice_row_change). It does not depend on the
+  // image's resolution (tests/gpu/method_test.cpp, docs/validation.md).
+  scattered,
+  // Per sample: the sample's stratum's footprint, differenced from the rasterised rest
+  // positions across a 2 x 2 quad, is cut into cells (sun_cells per pixel side shared among the
+  // s strata of a side, at most 64 per stratum side; shaders/ocean/reference_sun.glsl). Kept to
+  // compare with: its far rows darken as the pixels shrink (5-28 % in far bands at 96x64 against
+  // 48x32, docs/validation.md, stop 19), because its footprint no longer tiles the sea there.
+  gathered,
+};
+
+// Parses "scattered" or "gathered"; nullopt otherwise.
+std::optional<ReferenceSun> parse_reference_sun(std::string_view name);
+const char* reference_sun_name(ReferenceSun sun);
+
 // How the reference method samples each pixel: frames drawn at stratified pixel offsets and
 // averaged, doubling from min_samples until doubling changes every image row's total luminance
 // by less than row_tolerance (relative), or max_samples are reached (Bruneton et al. 2010 sec.
@@ -87,29 +115,18 @@ struct LightTerms {
 // each sampled once per round at the Halton (2, 3) point of the round; sample counts are whole
 // rounds (max_samples is rounded down to a multiple of s^2).
 //
-// The reflected sun is not point-sampled (its 0.27 degree disc would need millions of samples per
-// pixel): each sample integrates it over its stratum's footprint cut into cells no wider than
-// the shortest wavelength / sun_cells_per_wavelength, at most sun_cells per pixel side (shared
-// among a side's s strata, at most 64 per stratum side; shaders/ocean/reference_sun.glsl).
-// Measured (docs/validation.md): 16 cells per wavelength move 4-row bands of the sun by at most
-// 2.2 % from 16 to 32 samples, 4 per wavelength by up to 6 %; 8 against 16 differ by up to 12 %.
-// Strata that would need more are drawn with the most and reported unresolved
-// (RenderStats::resolved_rows: the fraction of each row's resolved samples).
-//
-// sun_scatter (experimental, stop 19): instead, once per image, each pixel's footprint on the sea
-// is cut into cells (the same width, at most sun_cells per pixel side, [1, 1024]) and each cell's
-// sun is added to the pixel that sees its glint (shaders/ocean/reference_sun_scatter.comp): no
-// noise between sample counts, and a convergence measured by halving the cells
-// (RenderStats::sun_lattice_row_change). Unlike the gathered sun it does not depend on the
-// image's resolution (docs/validation.md, stop 19); not yet the default, because the tests'
-// thresholds and the suite's tables were measured with the gathered sun.
+// The reflected sun is integrated over cells of the sea (ReferenceSun); sun_cells and
+// sun_cells_per_wavelength size them. Pixels or strata that would need more than sun_cells per
+// side are drawn with the most and reported unresolved (RenderStats::resolved_rows). Measured
+// (docs/validation.md): the scattered sun's rows move by 1.8 % at most from 22.6 to 32 cells per
+// wavelength, 18 % from 11.3 to 16.
 struct ReferenceSampling {
   int min_samples = 16;
   int max_samples = 1024;
   double row_tolerance = 0.01;
   int sun_cells = 256;
   double sun_cells_per_wavelength = 16.0;
-  bool sun_scatter = false;
+  ReferenceSun sun = ReferenceSun::scattered;
 };
 
 struct RendererOptions {

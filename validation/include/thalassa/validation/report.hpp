@@ -32,9 +32,9 @@ struct TermResult {
   // Samples per pixel of the frame (RenderStats::samples): the reference's after its doublings,
   // 1 for the other methods; 0 when not known (a report written before stop 16).
   int samples = 0;
-  std::string exr;        // the image, relative to the report's folder ("" when not written)
-  std::string png;        // its tone-mapped PNG, relative to the report's folder
-  TermMetrics metrics;    // against the case's reference (compare_images)
+  std::string exr;      // the image, relative to the report's folder ("" when not written)
+  std::string png;      // its tone-mapped PNG, relative to the report's folder
+  TermMetrics metrics;  // against the case's reference (compare_images)
   // Over the suite's flicker frames, when this term is one of FlickerSettings::terms.
   std::optional<double> flicker;         // validation::flicker of this method's frames
   std::optional<double> temporal_error;  // validation::temporal_error against the reference's
@@ -42,9 +42,9 @@ struct TermResult {
 
 // One method (or variant) on one case.
 struct MethodResult {
-  std::string name;               // SuiteMethod::name
-  std::string method;             // SuiteMethod::method
-  bool plain = true;              // SuiteMethod::plain(): on the per-row plots
+  std::string name;    // SuiteMethod::name
+  std::string method;  // SuiteMethod::method
+  bool plain = true;   // SuiteMethod::plain(): on the per-row plots
   // The reference its terms are measured against: "" the case's, else the name of the variant's
   // own reference ("reference_" + name, SuiteMethod::own_reference), itself a method of the case
   // (whose own `reference` is its name: it is measured against itself).
@@ -53,6 +53,10 @@ struct MethodResult {
   // The reference only, with ReferenceSettings::check_convergence: per term, the largest
   // |row total at twice the samples / row total - 1| (max_row_deviation).
   std::vector<std::pair<std::string, double>> convergence;
+  // The reference only, per term with the scattered sun (ReferenceSettings::sun): the largest
+  // change of a row's total sun from a lattice of half the cells
+  // (RenderStats::sun_lattice_row_change), the sun's own convergence test.
+  std::vector<std::pair<std::string, double>> lattice_convergence;
   // The reference only, per term with the sun: the image rows where its sun resolved every wave
   // (RenderStats::resolved_rows >= kResolvedRowFraction); the other methods are compared with it
   // on those rows only, for that term.

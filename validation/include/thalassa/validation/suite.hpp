@@ -95,10 +95,15 @@ struct ReferenceSettings {
   int pixel_samples_without_sun = 0;
   // Normal samples per pixel for the sun's disc, [1, 65536]: the reference's sun integrates over
   // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
-  // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun.glsl), each at most the shortest
-  // wavelength / sun_cells_per_wavelength ([1, 64]) wide.
+  // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun_scatter.comp), each at most the
+  // shortest wavelength / sun_cells_per_wavelength ([1, 64]) wide.
   int sun_normal_samples = 65536;
   double sun_cells_per_wavelength = 16.0;
+  // How the reference integrates the sun over its cells: "scattered" (once per image from a
+  // lattice of the sea; its convergence, the lattice against one of half the cells, is always
+  // reported as MethodResult::lattice_convergence) or "gathered" (per sample over its pixel
+  // stratum). planet/renderer.hpp, ReferenceSun.
+  std::string sun = "scattered";
   bool check_convergence = false;
 
   // The most samples per pixel of a term with the sun or without it.

@@ -34,16 +34,16 @@ struct OceanNodeOptions {
   // The shading method (ocean/method.hpp). The reference's node draws one sample per pixel, at
   // the frame's pixel_offset; the renderer averages many.
   OceanMethod method = OceanMethod::full;
-  // The reference's sun, gathered per sample (shaders/ocean/reference_sun.glsl): at most
-  // reference_sun_cells cells per side of a sample's pixel stratum, [1, 64]; or with
-  // reference_sun_scatter, scattered once per image from a lattice of the sea
-  // (shaders/ocean/reference_sun_scatter.comp): at most reference_sun_cells per pixel side,
-  // [1, 1024]. Either way each cell is at most the shortest wavelength /
-  // reference_cells_per_wavelength wide ([1, 64]); a stratum or pixel whose footprint needs more
-  // is drawn with the most and marked unresolved.
-  int reference_sun_cells = 64;
+  // The reference's sun (planet/renderer.hpp, ReferenceSun): with reference_sun_scatter (the
+  // default), scattered once per image from a lattice of the sea
+  // (shaders/ocean/reference_sun_scatter.comp), at most reference_sun_cells per pixel side,
+  // [1, 1024]; without it, gathered per sample (shaders/ocean/reference_sun.glsl), at most
+  // reference_sun_cells per side of a sample's pixel stratum, [1, 64]. Either way each cell is
+  // at most the shortest wavelength / reference_cells_per_wavelength wide ([1, 64]); a stratum
+  // or pixel whose footprint needs more is drawn with the most and marked unresolved.
+  int reference_sun_cells = 256;
   double reference_cells_per_wavelength = 16.0;
-  bool reference_sun_scatter = false;
+  bool reference_sun_scatter = true;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
