@@ -65,6 +65,8 @@ struct ValidateArgs {
   std::vector<std::string> cases;
   // --reference-samples: overrides the suite's reference.pixel_samples; 0: the suite's.
   int reference_samples = 0;
+  // --resume: keep the cases of the report already in `dir` that were run with the same inputs.
+  bool resume = false;
 };
 
 struct InfoArgs {

@@ -9,7 +9,9 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -206,6 +208,9 @@ class CaseRunner {
       const auto start = std::chrono::steady_clock::now();
       Scene s = scene;
       s.time += k * suite_.flicker.dt;
+      // The sun's lattice converges on frame 0 (its statistics are the term's); the later flicker
+      // frames of the same view skip the coarser lattice (a third of the sun's time).
+      options.reference.measure_lattice = k == 0;
       Renderer renderer(context_, s, options);
       renderer.render();
       rendered.frames.push_back(renderer.image());
@@ -232,29 +237,33 @@ class CaseRunner {
   ProgressBar& bar_;
 };
 
-// The renders a suite asks for, for the progress bar: per case expected to render, per method,
-// per term, one frame or the flicker frames.
-int render_count(const Suite& suite) {
+// The renders a case asks for, for the progress bar: per method (and own reference), per term,
+// one frame or the flicker frames; one (skipped) step for a case expected to be refused.
+int render_count(const Suite& suite, const SuiteCase& c) {
+  if (c.expected_exit != 0) return 1;
+  const bool has_reference = renders_reference(suite, c);
+  std::size_t renders = c.methods.size();
+  for (const std::string& name : c.methods)
+    renders += has_reference && suite.find_method(name)->own_reference ? 1 : 0;
   int count = 0;
-  for (const SuiteCase& c : suite.cases) {
-    if (c.expected_exit != 0) {
-      ++count;  // its refusal is a (skipped) step
-      continue;
+  for (std::size_t m = 0; m < renders; ++m)
+    for (const std::string& term : suite.terms) {
+      const bool over_time = suite.flicker.frames >= 2 &&
+                             std::find(suite.flicker.terms.begin(), suite.flicker.terms.end(),
+                                       term) != suite.flicker.terms.end();
+      count += over_time ? suite.flicker.frames : 1;
     }
-    // Each method, and the own reference of each variant that has one (with a reference).
-    const bool has_reference = renders_reference(suite, c);
-    std::size_t renders = c.methods.size();
-    for (const std::string& name : c.methods)
-      renders += has_reference && suite.find_method(name)->own_reference ? 1 : 0;
-    for (std::size_t m = 0; m < renders; ++m)
-      for (const std::string& term : suite.terms) {
-        const bool over_time = suite.flicker.frames >= 2 &&
-                               std::find(suite.flicker.terms.begin(), suite.flicker.terms.end(),
-                                         term) != suite.flicker.terms.end();
-        count += over_time ? suite.flicker.frames : 1;
-      }
-  }
   return count;
+}
+
+// Whether every image a case's report names is in `dir` (a resumed run keeps it only then).
+bool images_present(const CaseResult& c, const std::string& dir) {
+  std::error_code error;
+  for (const MethodResult& m : c.methods)
+    for (const TermResult& t : m.terms)
+      for (const std::string& file : {t.exr, t.png})
+        if (!file.empty() && !fs::is_regular_file(fs::path(dir) / file, error)) return false;
+  return true;
 }
 
 }  // namespace
@@ -278,25 +287,23 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
                    "by 1% or more; a machine with a GPU affords 1024 and more); the terms without "
                    "the sun keep reference.pixel_samples_without_sun where it is larger")
       ->check(CLI::Range(1, 4096));
+  validate->add_flag("--resume", args.resume,
+                     "Keep the cases of the report already in the output folder that were run "
+                     "with the same inputs (scene, methods, settings, program and renderer), and "
+                     "render the rest; the report is rewritten after each case, so a run cut "
+                     "short can be resumed, and runs of different --case can be joined");
 }
 
 namespace {
 
-// Keeps the cases `patterns` name (all when empty), in the suite's order. A pattern that matches
-// no case is bad input: a misspelt name would otherwise run nothing and pass.
-void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
-  if (patterns.empty()) return;
-  std::vector<SuiteCase> kept;
-  for (const SuiteCase& c : suite.cases)
-    for (const std::string& p : patterns)
-      if (fnmatch(p.c_str(), c.name.c_str(), 0) == 0) {
-        kept.push_back(c);
-        break;
-      }
+// Which of the suite's cases `patterns` name (all when empty), one flag per case. A pattern that
+// matches no case is bad input: a misspelt name would otherwise run nothing and pass.
+std::vector<bool> select_cases(const Suite& suite, const std::vector<std::string>& patterns) {
+  std::vector<bool> selected(suite.cases.size(), patterns.empty());
   for (const std::string& p : patterns) {
-    const bool any = std::any_of(suite.cases.begin(), suite.cases.end(), [&](const SuiteCase& c) {
-      return fnmatch(p.c_str(), c.name.c_str(), 0) == 0;
-    });
+    bool any = false;
+    for (std::size_t i = 0; i < suite.cases.size(); ++i)
+      if (fnmatch(p.c_str(), suite.cases[i].name.c_str(), 0) == 0) selected[i] = any = true;
     if (!any) {
       std::string names;
       for (const SuiteCase& c : suite.cases) names += (names.empty() ? "" : ", ") + c.name;
@@ -304,7 +311,33 @@ void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
                        names + "), got \"" + p + "\"");
     }
   }
-  suite.cases = std::move(kept);
+  return selected;
+}
+
+// The cases of the report in `dir` (--resume), by name; none when it has no report yet. A report
+// that cannot be read, or one of another suite, is bad input (SceneError): resuming it would mix
+// two runs.
+std::map<std::string, CaseResult> earlier_cases(const std::string& dir, const Suite& suite) {
+  const fs::path path = fs::path(dir) / "results.json";
+  std::error_code error;
+  if (!fs::exists(path, error)) return {};
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  validation::Report earlier;
+  try {
+    if (!in) throw std::runtime_error("cannot read it");
+    earlier = validation::report_from_json(text.str());
+  } catch (const std::exception& e) {
+    throw SceneError("--resume: " + path.string() + ": expected the results.json of a report, " +
+                     "got a file it cannot read (" + e.what() + ")");
+  }
+  if (earlier.suite != suite.name)
+    throw SceneError("--resume: " + path.string() + ": expected a report of suite \"" + suite.name +
+                     "\", got one of \"" + earlier.suite + "\" (write to another folder)");
+  std::map<std::string, CaseResult> cases;
+  for (CaseResult& c : earlier.cases) cases[c.name] = std::move(c);
+  return cases;
 }
 
 }  // namespace
@@ -312,12 +345,11 @@ void select_cases(Suite& suite, const std::vector<std::string>& patterns) {
 int run_validate(const ValidateArgs& args) {
   // 1. The suite, the output folder and gnuplot, before any render.
   Suite suite;
-  int suite_cases = 0;  // before --case
+  std::vector<bool> selected;
   try {
     suite =
         args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
-    suite_cases = static_cast<int>(suite.cases.size());
-    select_cases(suite, args.cases);
+    selected = select_cases(suite, args.cases);
     if (args.reference_samples > 0) {
       // The terms with the sun take N; those without keep their own cap where it is larger.
       validation::ReferenceSettings& reference = suite.reference;
@@ -335,6 +367,15 @@ int run_validate(const ValidateArgs& args) {
     print_error("-o " + args.dir + ": expected a folder, got a file");
     return kExitInvalidInput;
   }
+  std::map<std::string, CaseResult> earlier;
+  if (args.resume) {
+    try {
+      earlier = earlier_cases(args.dir, suite);
+    } catch (const SceneError& e) {
+      print_error(e.what());
+      return kExitInvalidInput;
+    }
+  }
   try {
     validation::find_gnuplot();
   } catch (const validation::ReportError& e) {
@@ -347,7 +388,9 @@ int run_validate(const ValidateArgs& args) {
     return kExitInvalidInput;
   }
 
-  // 2. Every case.
+  // 2. Every case: run, or with --resume kept from the earlier report where it was run with the
+  // same inputs (case_fingerprint) and its images are still there. The report is rewritten after
+  // each case, so that a run cut short leaves the cases it finished (and --resume goes on).
   std::unique_ptr<GlContext> context = open_context(args.backend);
   validation::Report report;
   report.suite = suite.name;
@@ -358,31 +401,69 @@ int run_validate(const ValidateArgs& args) {
   report.version = THALASSA_VERSION_STRING;
   report.horizon = suite.horizon;
   report.reference = suite.reference;
-  report.suite_cases = suite_cases;
-  ProgressBar bar(render_count(suite), "renders");
+  report.suite_cases = static_cast<int>(suite.cases.size());
+  const std::string environment =
+      "thalassa " + report.version + ", " + report.backend + ", " + report.renderer;
+  // Per case: its fingerprint, and the earlier run kept (null: render it, or leave it out).
+  std::vector<std::string> fingerprints;
+  std::vector<const CaseResult*> kept;
+  int steps = 0;
+  for (std::size_t i = 0; i < suite.cases.size(); ++i) {
+    const SuiteCase& c = suite.cases[i];
+    fingerprints.push_back(validation::case_fingerprint(suite, c, environment));
+    const auto found = earlier.find(c.name);
+    const bool keep = found != earlier.end() && found->second.fingerprint == fingerprints.back() &&
+                      images_present(found->second, args.dir);
+    kept.push_back(keep ? &found->second : nullptr);
+    if (selected[i]) steps += keep ? 1 : render_count(suite, c);
+  }
+  ProgressBar bar(steps, "renders");
   CaseRunner runner(suite, *context, args.dir, bar);
-  int failed = 0;
-  for (const SuiteCase& c : suite.cases) {
-    report.cases.push_back(runner.run(c));
-    if (!report.cases.back().passed()) {
+  int failed = 0, run = 0;
+  for (std::size_t i = 0; i < suite.cases.size(); ++i) {
+    const SuiteCase& c = suite.cases[i];
+    if (kept[i]) {
+      // Kept (selected or not): a resumed report holds every case it has finished.
+      report.cases.push_back(*kept[i]);
+      if (selected[i]) bar.skipped(c.name, "kept from the earlier run (--resume)");
+    } else if (selected[i]) {
+      report.cases.push_back(runner.run(c));
+      report.cases.back().fingerprint = fingerprints[i];
+      ++run;
+    } else {
+      continue;
+    }
+    if (selected[i] && !report.cases.back().passed()) {
       ++failed;
       print_error(
           "case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
           ", got " + std::to_string(report.cases.back().exit_status) +
           (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message + ")"));
     }
+    if (kept[i]) continue;
+    // 3. The report, so far.
+    try {
+      validation::write_report(report, args.dir);
+    } catch (const validation::ReportError& e) {
+      bar.finish();
+      print_error(e.what());
+      return kExitRuntimeFailure;
+    }
   }
   bar.finish();
-
-  // 3. The report.
-  try {
-    validation::write_report(report, args.dir);
-  } catch (const validation::ReportError& e) {
-    print_error(e.what());
-    return kExitRuntimeFailure;
+  if (run == 0) {
+    // Nothing rendered (every selected case kept): the report is still written, so that it
+    // holds what this run selected.
+    try {
+      validation::write_report(report, args.dir);
+    } catch (const validation::ReportError& e) {
+      print_error(e.what());
+      return kExitRuntimeFailure;
+    }
   }
-  std::fprintf(stderr, "thalassa: %zu cases, %d not as expected; report in %s/index.html\n",
-               suite.cases.size(), failed, args.dir.c_str());
+  const auto chosen = std::count(selected.begin(), selected.end(), true);
+  std::fprintf(stderr, "thalassa: %ld cases, %d not as expected; report in %s/index.html\n",
+               static_cast<long>(chosen), failed, args.dir.c_str());
   return failed == 0 ? kExitOk : kExitRuntimeFailure;
 }
 

@@ -430,11 +430,12 @@ class OceanNode final : public gl::Node {
   // The reference's sun (shaders/ocean/reference_sun_scatter.comp) into reference_sun_buffer_,
   // computed once per lattice: again only when the frame changes other than in its pixel offset
   // (the reference's samples share one). The same at half the cells (spacing and cap times
-  // sqrt 2) gives lattice_row_change_, the "doubling the samples" for the sun's normal
-  // samples: the largest change of an image row's total sun factor between the two, relative to
-  // the finer's, over the rows the coarser resolves (kScatterResolvedRow) that are brighter than
-  // kScatterNegligibleRow of the brightest. (The lighting multiplies the factor by the smooth
-  // transmitted irradiance, so the image's rows change alike.)
+  // sqrt 2; unless options_.reference_measure_lattice is off) gives lattice_row_change_, the
+  // issue's "doubling the samples" for the sun's normal samples: the largest change of an image
+  // row's total sun factor between the two, relative to the finer's, over the rows the coarser
+  // resolves (kScatterResolvedRow) that are brighter than kScatterNegligibleRow of the brightest.
+  // (The lighting multiplies the factor by the smooth transmitted irradiance, so the image's rows
+  // change alike.)
   void scatter_reference_sun(const gl::FrameInputs& inputs, const GridCamera& camera,
                              const glm::dvec2& downwind, Context& context) {
     const std::size_t floats = 4 * std::size_t(inputs.width) * std::size_t(inputs.height);
@@ -497,23 +498,27 @@ class OceanNode final : public gl::Node {
         waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
     const int cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
     run_scatter(program, reference_sun_buffer_.get(), spacing, cap, inputs);
-    run_scatter(program, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
-                std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), inputs);
+    const bool measure = options_.reference_measure_lattice;
+    if (measure)
+      run_scatter(program, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
+                  std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), inputs);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
-    const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
-    const double brightest =
-        fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
     hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
     lattice_row_change_ = 0.0;
     lattice_rows_ = 0;
-    for (std::size_t y = 0; y < fine.total.size(); ++y)
-      if (coarse.resolved[y] >= kScatterResolvedRow &&
-          fine.total[y] > kScatterNegligibleRow * brightest) {
-        lattice_row_change_ = std::max(lattice_row_change_,
-                                       std::abs(fine.total[y] - coarse.total[y]) / fine.total[y]);
-        ++lattice_rows_;
-      }
+    if (measure) {
+      const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
+      const double brightest =
+          fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
+      for (std::size_t y = 0; y < fine.total.size(); ++y)
+        if (coarse.resolved[y] >= kScatterResolvedRow &&
+            fine.total[y] > kScatterNegligibleRow * brightest) {
+          lattice_row_change_ = std::max(lattice_row_change_,
+                                         std::abs(fine.total[y] - coarse.total[y]) / fine.total[y]);
+          ++lattice_rows_;
+        }
+    }
     scatter_ms_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     context.timer.end_pass("ocean.reference_sun");

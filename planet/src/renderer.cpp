@@ -216,6 +216,7 @@ struct Renderer::Impl {
            .reference_sun_cells = reference_sun_cells(options.reference),
            .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
            .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
+           .reference_measure_lattice = options.reference.measure_lattice,
            .features = features}));
   }
 

@@ -295,7 +295,7 @@ TEST_F(Cli, ValidateWritesTheReport) {
     "methods": ["reference", "full"],
     "terms": ["sun", "sky", "all"],
     "flicker": {"frames": 2, "dt": 0.04, "terms": ["all"]},
-    "reference": {"pixel_samples": 4, "pixel_samples_without_sun": 8},
+    "reference": {"pixel_samples": 4, "pixel_samples_without_sun": 8, "sun_normal_samples": 1024},
     "cases": [
       {"name": "near", "set": {"ocean.wind_speed": 8}},
       {"name": "bad_lat", "set": {"camera.lat": 95}, "expect": 2, "error": "camera.lat"}
@@ -315,9 +315,9 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(results["cases"][1]["exit_status"], 2);
   EXPECT_EQ(results["reference"]["pixel_samples"], 2);
   const auto& reference_terms = results["cases"][0]["methods"][0]["terms"];
-  EXPECT_EQ(reference_terms[0]["samples"], 2);  // sun
-  EXPECT_EQ(reference_terms[1]["samples"], 8);  // sky
-  EXPECT_EQ(reference_terms[2]["samples"], 2);  // all
+  EXPECT_EQ(reference_terms[0]["samples"], 2);                             // sun
+  EXPECT_EQ(reference_terms[1]["samples"], 8);                             // sky
+  EXPECT_EQ(reference_terms[2]["samples"], 2);                             // all
   EXPECT_EQ(results["cases"][0]["methods"][1]["terms"][0]["samples"], 1);  // full's
   // Above the sky's own cap, --reference-samples raises it too (the sky alone: cheap).
   write("sky.json", R"({"suite": "sky", "base": {"image.width": 24, "image.height": 16},
@@ -419,6 +419,76 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   std::ifstream html(dir_ / "out" / "index.html");
   const std::string page{std::istreambuf_iterator<char>(html), std::istreambuf_iterator<char>()};
   EXPECT_NE(page.find("2 of its 3 cases were run"), std::string::npos);
+}
+
+// --resume keeps the cases of the report in the folder that were run with the same inputs and
+// renders the rest, so that runs of different --case join into one report and a run cut short
+// goes on; a case whose inputs changed is rendered again. A folder holding another suite's
+// report, or a file that is no report, is refused before anything is rendered.
+TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
+  const auto suite = [](const std::string& b_wind) {
+    return R"({"suite": "resume", "base": {"image.width": 16, "image.height": 8,
+      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
+      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
+      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
+                {"name": "b", "set": {"ocean.wind_speed": )" +
+           b_wind + "}}]}";
+  };
+  write("s.json", suite("8"));
+  ASSERT_EQ(run("validate s.json -o out --case a").status, 0);
+  const auto read_results = [&] {
+    std::ifstream in(dir_ / "out" / "results.json");
+    return nlohmann::json::parse(in);
+  };
+  const auto first = read_results();
+  ASSERT_EQ(first["cases"].size(), 1u);
+  const std::string fingerprint_a = first["cases"][0]["fingerprint"];
+  EXPECT_EQ(fingerprint_a.size(), 16u);
+  const auto a_image = dir_ / "out" / "images" / "a_reference_sky.exr";
+  const auto a_time = fs::last_write_time(a_image);
+
+  // Case b joins case a, which is kept (not rendered again: its image is untouched).
+  const Result joined = run("validate s.json -o out --case b --resume");
+  ASSERT_EQ(joined.status, 0) << joined.err;
+  const auto both = read_results();
+  ASSERT_EQ(both["cases"].size(), 2u);
+  EXPECT_EQ(both["cases"][0]["name"], "a");
+  EXPECT_EQ(both["cases"][0]["fingerprint"], fingerprint_a);
+  EXPECT_EQ(both["cases"][0], first["cases"][0]);
+  EXPECT_EQ(both["cases"][1]["name"], "b");
+  EXPECT_EQ(fs::last_write_time(a_image), a_time);
+  std::ifstream html(dir_ / "out" / "index.html");
+  const std::string page{std::istreambuf_iterator<char>(html), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(page.find("A part of the suite"), std::string::npos);  // both cases are in it
+
+  // Everything kept: nothing is rendered and the report stays whole.
+  const Result again = run("validate s.json -o out --resume");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_NE(again.err.find("kept from the earlier run"), std::string::npos) << again.err;
+  EXPECT_EQ(read_results()["cases"], both["cases"]);
+  EXPECT_EQ(fs::last_write_time(a_image), a_time);
+
+  // Case b's sea changed: b is rendered again, a is kept.
+  write("s.json", suite("12"));
+  ASSERT_EQ(run("validate s.json -o out --resume").status, 0);
+  const auto changed = read_results();
+  EXPECT_EQ(changed["cases"][0], first["cases"][0]);
+  EXPECT_NE(changed["cases"][1]["fingerprint"], both["cases"][1]["fingerprint"]);
+  EXPECT_EQ(changed["cases"][1]["set"]["ocean.wind_speed"], 12);
+
+  // Without --resume the folder's report is replaced by this run's cases alone.
+  ASSERT_EQ(run("validate s.json -o out --case b").status, 0);
+  EXPECT_EQ(read_results()["cases"].size(), 1u);
+
+  // Another suite's report, and a file that is no report: refused, nothing rendered.
+  write("other.json", R"({"suite": "other", "base": {"image.width": 16, "image.height": 8},
+    "cases": [{"name": "a", "set": {}}]})");
+  expect_invalid(run("validate other.json -o out --resume"),
+                 {"--resume", "results.json", "\"resume\"", "another folder"});
+  fs::create_directories(dir_ / "junk");
+  write("junk/results.json", "{\"suite\": ");
+  expect_invalid(run("validate s.json -o junk --resume"), {"--resume", "junk/results.json"});
+  EXPECT_FALSE(fs::exists(dir_ / "junk" / "index.html"));
 }
 
 // ---- thalassa sky ----

@@ -163,19 +163,36 @@ std::optional<double> optional_from(const ojson& j, const char* key) {
 // ---------------------------------------------------------------------------------------------
 // gnuplot
 
+// A file's whole text; nullopt when it cannot be read (missing).
+std::optional<std::string> read_text_if_exists(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 // Writes NAME.dat and NAME.gp into `plots` and runs gnuplot on the script, which must write
 // its PNG to the file named by gnuplot variable `out` (a pending name, renamed into place when
-// gnuplot succeeds). Returns the PNG's file name.
+// gnuplot succeeds); where both files already hold exactly that and the PNG exists, it is kept
+// and gnuplot is not run. Returns the PNG's file name.
 std::string draw(const std::string& gnuplot, const fs::path& plots, const std::string& name,
                  const std::string& data, const std::string& script, const ReportOptions& options) {
   const std::string png = name + ".png";
   const std::string pending = "." + png + ".tmp-" + std::to_string(getpid());
-  write_text_atomically((plots / (name + ".dat")).string(), data);
   const std::string header =
       "# Drawn by thalassa validate; redraw with: gnuplot " + name + ".gp (in this folder).\n" +
       "if (!exists(\"out\")) out = '" + png + "'\n" + "set terminal pngcairo size " +
       std::to_string(options.plot_width) + "," + std::to_string(options.plot_height) +
       " noenhanced font ',10'\n" + "set output out\nset datafile missing 'NaN'\n";
+  // Already drawn from the same data and script (a report rewritten after each case of a run, or
+  // resumed): the PNG is gnuplot's output of exactly these files, so it is kept.
+  std::error_code ec;
+  if (fs::is_regular_file(plots / png, ec) &&
+      read_text_if_exists(plots / (name + ".dat")) == data &&
+      read_text_if_exists(plots / (name + ".gp")) == header + script)
+    return png;
+  write_text_atomically((plots / (name + ".dat")).string(), data);
   write_text_atomically((plots / (name + ".gp")).string(), header + script);
   const std::string log = (plots / ("." + name + ".log")).string();
   const int status =
@@ -187,7 +204,6 @@ std::string draw(const std::string& gnuplot, const fs::path& plots, const std::s
     text << in.rdbuf();
     output = text.str();
   }
-  std::error_code ec;
   fs::remove(log, ec);
   if (status != 0 || !fs::is_regular_file(plots / pending, ec)) {
     fs::remove(plots / pending, ec);
@@ -679,6 +695,7 @@ std::string report_json(const Report& report) {
     jc["message"] = c.message;
     jc["passed"] = c.passed();
     jc["camera_height"] = c.camera_height;
+    if (!c.fingerprint.empty()) jc["fingerprint"] = c.fingerprint;
     jc["methods"] = ojson::array();
     for (const MethodResult& m : c.methods) {
       ojson jm;
@@ -771,6 +788,7 @@ Report report_from_json(const std::string& json_text) {
     c.exit_status = jc.at("exit_status");
     c.message = jc.at("message");
     c.camera_height = get_number(jc.at("camera_height"));
+    c.fingerprint = jc.value("fingerprint", std::string());
     for (const ojson& jm : jc.at("methods")) {
       MethodResult m;
       m.name = jm.at("name");

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -504,6 +505,53 @@ std::optional<std::string> case_scene_error(const Suite& suite, const SuiteCase&
     return std::string(e.what());
   }
   return std::nullopt;
+}
+
+std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string_view environment) {
+  // nlohmann::json (not ordered): keys sorted, so the text does not depend on the code's order.
+  nlohmann::json inputs;
+  inputs["environment"] = environment;
+  inputs["suite"] = suite.name;
+  inputs["terms"] = suite.terms;
+  inputs["flicker"] = {
+      {"frames", suite.flicker.frames}, {"dt", suite.flicker.dt}, {"terms", suite.flicker.terms}};
+  const ReferenceSettings& r = suite.reference;
+  inputs["reference"] = {{"pixel_samples", r.pixel_samples},
+                         {"pixel_samples_without_sun", r.pixel_samples_without_sun},
+                         {"sun_normal_samples", r.sun_normal_samples},
+                         {"sun_cells_per_wavelength", r.sun_cells_per_wavelength},
+                         {"sun", r.sun},
+                         {"check_convergence", r.check_convergence}};
+  inputs["horizon"] = {{"depth_deg", suite.horizon.depth_deg}, {"bin_deg", suite.horizon.bin_deg}};
+  inputs["expected_exit"] = c.expected_exit;
+  inputs["expected_error"] = c.expected_error;
+  const auto scene_text = [&](const SuiteMethod* method) {
+    try {
+      return case_scene_builder(suite, c, method).merged_json();
+    } catch (const SceneError& e) {
+      return std::string("refused: ") + e.what();
+    }
+  };
+  inputs["scene"] = scene_text(nullptr);
+  nlohmann::json methods = nlohmann::json::array();
+  for (const std::string& name : c.methods) {
+    const SuiteMethod* m = suite.find_method(name);
+    if (!m) continue;  // load_suite_text refuses such a case
+    methods.push_back({{"name", m->name},
+                       {"method", m->method},
+                       {"own_reference", m->own_reference},
+                       {"scene", scene_text(m)}});
+  }
+  inputs["methods"] = methods;
+  // FNV-1a, 64 bits: stable across compilers and runs, unlike std::hash.
+  std::uint64_t hash = 0xcbf29ce484222325ull;
+  for (const unsigned char byte : inputs.dump()) {
+    hash ^= byte;
+    hash *= 0x100000001b3ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  return hex;
 }
 
 }  // namespace thalassa::validation

@@ -127,6 +127,11 @@ struct ReferenceSampling {
   int sun_cells = 256;
   double sun_cells_per_wavelength = 16.0;
   ReferenceSun sun = ReferenceSun::scattered;
+  // Scattered: also scatter the lattice of half the cells, whose difference is the sun's
+  // convergence (RenderStats::sun_lattice_row_change; about a third more time). Off, the
+  // statistics report no lattice rows (sun_lattice_rows 0): for frames whose convergence is
+  // measured on another frame of the same view (validate's flicker frames).
+  bool measure_lattice = true;
 };
 
 struct RendererOptions {

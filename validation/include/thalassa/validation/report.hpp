@@ -77,6 +77,9 @@ struct CaseResult {
   std::string message;
   double camera_height = 0.0;         // m, for the tables
   std::vector<MethodResult> methods;  // empty for a case that was not rendered
+  // case_fingerprint of the inputs it was run with ("" in a report written before stop 22):
+  // what `thalassa validate --resume` compares to keep it.
+  std::string fingerprint;
   // The case passed: it ended as expected (expected_exit, and expected_error in the message).
   bool passed() const;
 };

@@ -167,4 +167,14 @@ Scene case_scene(const Suite& suite, const SuiteCase& c, const SuiteMethod* meth
 std::optional<std::string> case_scene_error(const Suite& suite, const SuiteCase& c,
                                             const SuiteMethod* method = nullptr);
 
+// A digest of everything that decides what `thalassa validate` renders and measures for case `c`
+// (16 hex digits, FNV-1a 64 of a canonical JSON text): the scene of each of its methods as built
+// (defaults, the suite's scene file, base, case and method overrides; or the message that
+// refuses it), the methods' names and kinds, the suite's terms, flicker, reference and horizon
+// settings, the case's expected ending, and `environment` (the caller's program version and
+// renderer, whose frame times the report holds). Two runs of a case with the same fingerprint
+// measure the same thing: `thalassa validate --resume` keeps a case of an earlier report only
+// when its fingerprint is the one the suite gives now.
+std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string_view environment);
+
 }  // namespace thalassa::validation

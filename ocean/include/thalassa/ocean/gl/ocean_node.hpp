@@ -44,6 +44,9 @@ struct OceanNodeOptions {
   int reference_sun_cells = 256;
   double reference_cells_per_wavelength = 16.0;
   bool reference_sun_scatter = true;
+  // With the scatter: also the lattice of half the cells, for its convergence (ReferenceSampling::
+  // measure_lattice).
+  bool reference_measure_lattice = true;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
