@@ -29,6 +29,7 @@ struct RenderArgs {
   int samples = 1024;                       // the reference's most samples per pixel
   int sun_cells = 256;                      // the reference's sun: most cells per pixel side
   double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
+  int sun_refine = 4;                       // the reference's sun: subcells per side near glints
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
 };
 

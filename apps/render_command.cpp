@@ -30,6 +30,7 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_rows"] = stats.sun_lattice_rows;
     json["sun_lattice_ms"] = stats.sun_lattice_ms;
     json["sun_lattice_margin"] = stats.sun_lattice_margin;
+    json["sun_lattice_refine"] = stats.sun_lattice_refine;
     json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
   }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
@@ -99,6 +100,13 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "and costs the square; scattered, --stats sun_lattice_row_change measures it)")
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
+  render
+      ->add_option("--sun-refine", args.sun_refine,
+                   "The reference's sun, scattered: cells whose slopes come near the mirror slope "
+                   "(the few that reflect the sun) are cut into N x N subcells, as if the lattice "
+                   "were N times finer where the glints are")
+      ->check(CLI::Range(1, 8))
+      ->capture_default_str();
 }
 
 int run_render(const RenderArgs& args) {
@@ -121,6 +129,7 @@ int run_render(const RenderArgs& args) {
       std::min(renderer_options.reference.min_samples, args.samples);
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
+  renderer_options.reference.sun_refine = args.sun_refine;
   renderer_options.reference.sun = *parse_reference_sun(args.reference_sun);  // CLI11 checked
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight

@@ -130,8 +130,17 @@ class CaseRunner {
       m.plain = method->plain();
       // A variant's own reference is measured against itself, like the case's.
       if (!job.against.empty()) m.reference = "reference_" + job.against;
+      // The sun's lattice converges once per reference, on its first term with the sun (the
+      // others draw the same lattice of the same view: the coarser one would cost them a third
+      // more for the same number).
+      bool lattice_measured = false;
       for (const std::string& term : suite_.terms) {
-        Rendered rendered = render_term(c, *method, scene, term);
+        LightTerms terms;
+        if (const std::string problem = parse_terms(validation::terms_option(term), terms);
+            !problem.empty())
+          throw SceneError(suite_.source + ": " + problem);
+        const bool measure_lattice = job.is_reference && terms.sun && !lattice_measured;
+        Rendered rendered = render_term(c, *method, scene, term, terms, measure_lattice);
         if (job.is_reference)
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] = validation::reference_for_comparison(
@@ -156,8 +165,10 @@ class CaseRunner {
           reference_images[{job.against, term}] = rendered;
           if (suite_.reference.check_convergence)
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
-          if (rendered.stats.sun_lattice_ms > 0.0)
+          if (measure_lattice && rendered.stats.sun_lattice_ms > 0.0) {
             m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_row_change);
+            lattice_measured = true;
+          }
           const std::vector<double>& rows = rendered.stats.resolved_rows;
           if (!rows.empty())
             m.resolved_rows.emplace_back(term,
@@ -185,13 +196,14 @@ class CaseRunner {
     }
   }
 
-  // One method and term on the case: frame 0 at the scene's time, then the flicker frames.
+  // One method and term (`terms`, parsed from `term`) on the case: frame 0 at the scene's time,
+  // then the flicker frames; the reference's sun measures its lattice's convergence on frame 0
+  // with measure_lattice.
   Rendered render_term(const SuiteCase& c, const SuiteMethod& method, const Scene& scene,
-                       const std::string& term) {
+                       const std::string& term, const LightTerms& terms, bool measure_lattice) {
     RendererOptions options;
     options.method = *ocean::parse_method(method.method);
-    const std::string problem = parse_terms(validation::terms_option(term), options.terms);
-    if (!problem.empty()) throw SceneError(suite_.source + ": " + problem);
+    options.terms = terms;
     const validation::ReferenceSettings& reference = suite_.reference;
     const int most = reference.max_samples(options.terms.sun);
     options.reference.max_samples = most;
@@ -199,6 +211,7 @@ class CaseRunner {
     options.reference.sun_cells = reference.sun_cells();
     options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
     options.reference.sun = *parse_reference_sun(reference.sun);  // the suite's parser checked
+    options.reference.sun_refine = reference.sun_refine;
     const bool over_time = suite_.flicker.frames >= 2 &&
                            std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),
                                      term) != suite_.flicker.terms.end();
@@ -208,9 +221,7 @@ class CaseRunner {
       const auto start = std::chrono::steady_clock::now();
       Scene s = scene;
       s.time += k * suite_.flicker.dt;
-      // The sun's lattice converges on frame 0 (its statistics are the term's); the later flicker
-      // frames of the same view skip the coarser lattice (a third of the sun's time).
-      options.reference.measure_lattice = k == 0;
+      options.reference.measure_lattice = measure_lattice && k == 0;
       Renderer renderer(context_, s, options);
       renderer.render();
       rendered.frames.push_back(renderer.image());

@@ -94,7 +94,14 @@ LocalFeatureBuffers::LocalFeatureBuffers(const LocalFeatures& features) {
     glNamedBufferStorage(track_buffer_.get(),
                          static_cast<GLsizeiptr>(points.size() * sizeof(float)), points.data(), 0);
     wake_count_ = static_cast<int>(features.wakes.size());
+    track_points_ = static_cast<int>(points.size() / 2);
   }
+}
+
+int LocalFeatureBuffers::loop_iterations_per_point() const {
+  // Three loops over the wakes (local_waves.glsl), and in two of them each wake's track (the
+  // frame of its nearest piece), plus each loop's exit.
+  return 3 * (wake_count_ + 1) + 2 * (track_points_ + wake_count_);
 }
 
 void LocalFeatureBuffers::add_defines(gl::Defines& defines) const {

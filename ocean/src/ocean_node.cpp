@@ -1,6 +1,7 @@
 #include "thalassa/ocean/gl/ocean_node.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -32,6 +33,29 @@ constexpr double kReferenceGridCell = 1.0;
 // sec. 7.2 count and far past what a validation image can afford.
 constexpr int kReferenceMaxCells = 64;
 constexpr int kScatterMaxCells = 1024;
+// The most subcells per side of a scattered cell that comes near the mirror slope
+// (reference_sun_scatter.comp's REFERENCE_MAX_REFINE).
+constexpr int kScatterMaxRefine = 8;
+// Loop iterations one scatter invocation may run: half of llvmpipe's limit per invocation
+// (Mesa's gallivm LP_MAX_TGSI_LOOP_ITERATIONS = 65535, shared by all of an invocation's loops,
+// past which every loop silently stops: reference_sun_scatter.comp, "Why segments").
+constexpr double kScatterLoopBudget = 32768.0;
+
+// The scatter's loop iterations per invocation (an upper estimate of the shader's loops: each
+// corner's wave loop and the features' loops, the segment's fixed work, and per cell its two new
+// corners, its neighbour test and its deposits, and when refined its subcells' corners and
+// loops), for `waves` waves, `feature` iterations per point of the wakes' loops, `refine`
+// subcells per side and `cells` cells per invocation.
+double scatter_iterations(int waves, int feature, int refine, int cells) {
+  const double corner = waves + 1.0 + feature;
+  const double fixed = waves + 2.0 * corner + 32.0;
+  double cell = 2.0 * corner + 32.0;
+  if (refine > 1) {
+    const double side = refine + 1.0;
+    cell += (side * side - 4.0) * corner + 2.0 * side * side + 12.0 * refine * refine;
+  }
+  return fixed + cells * cell;
+}
 
 // The scattered sun's lattice: invocations per dispatch (65535 work groups of 64, GL's smallest
 // guaranteed work-group count) and the most pixels added beyond each image edge.
@@ -46,6 +70,8 @@ constexpr double kScatterResolvedRow = 0.99;
 // ocean_lighting.frag), clear of the waves' (1, 2) and the wakes' (3, 4), and the texture unit of
 // the grid's depth it reads, clear of the sky provider's (4-11) and the calm areas' (12).
 constexpr GLuint kReferenceSunBinding = 7;
+// The scattered sun's footprints (reference_sun_scatter.comp, pass 1 to pass 2).
+constexpr GLuint kScatterFootprintBinding = 8;
 constexpr GLuint kGridDepthUnit = 14;
 
 class OceanNode final : public gl::Node {
@@ -256,7 +282,8 @@ class OceanNode final : public gl::Node {
             {"reference_sun.lattice_row_change", lattice_row_change_},
             {"reference_sun.lattice_rows", double(lattice_rows_)},
             {"reference_sun.hidden_fraction", hidden_fraction_},
-            {"reference_sun.margin_px", double(scatter_margin_)}};
+            {"reference_sun.margin_px", double(scatter_margin_)},
+            {"reference_sun.refine", double(scatter_refine_)}};
   }
 
  private:
@@ -454,23 +481,65 @@ class OceanNode final : public gl::Node {
     const auto start = std::chrono::steady_clock::now();
     gl::Defines defines;
     if (local_features_) local_features_->add_defines(defines);
-    const GLuint program = context.shaders.program(
-        {.compute = "ocean/reference_sun_scatter.comp", .defines = defines});
-    auto location = [&](const char* name) { return glGetUniformLocation(program, name); };
-    glProgramUniform1i(program, location("wave_count"), static_cast<GLint>(waves_.waves.size()));
-    glProgramUniform2f(program, location("downwind"), float(downwind.x), float(downwind.y));
-    glProgramUniform1f(program, location("fresnel_r"), float(options_.settings.fresnel_r));
-    glProgramUniform1f(program, location("n_min"), float(options_.settings.n_min));
-    glProgramUniform1f(program, location("n_max"), float(options_.settings.n_max));
+    gl::Defines footprint_defines = defines;
+    footprint_defines["REFERENCE_FOOTPRINT_PASS"] = "1";
+    // The same source twice: the footprints' pass, then the cells'; both take every uniform.
+    const std::array<GLuint, 2> programs = {
+        context.shaders.program(
+            {.compute = "ocean/reference_sun_scatter.comp", .defines = footprint_defines}),
+        context.shaders.program(
+            {.compute = "ocean/reference_sun_scatter.comp", .defines = defines})};
+    const auto uniform = [&](const char* name, auto set) {
+      for (const GLuint program : programs) set(program, glGetUniformLocation(program, name));
+    };
+    const auto uniform_f = [&](const char* name, double value) {
+      uniform(name,
+              [&](GLuint program, GLint at) { glProgramUniform1f(program, at, float(value)); });
+    };
+    const auto uniform_i = [&](const char* name, int value) {
+      uniform(name, [&](GLuint program, GLint at) { glProgramUniform1i(program, at, value); });
+    };
+    uniform_i("wave_count", static_cast<int>(waves_.waves.size()));
+    uniform("downwind", [&](GLuint program, GLint at) {
+      glProgramUniform2f(program, at, float(downwind.x), float(downwind.y));
+    });
+    uniform_f("fresnel_r", options_.settings.fresnel_r);
+    uniform_f("n_min", options_.settings.n_min);
+    uniform_f("n_max", options_.settings.n_max);
     const double radius = provider_->planet_radius();
     const double height = std::max(inputs.camera_height, 0.0);
-    glProgramUniform1f(program, location("horizon_distance"),
-                       float(std::sqrt(height * (2.0 * radius + height))));
+    uniform_f("horizon_distance", std::sqrt(height * (2.0 * radius + height)));
     // Every wave's displacement together is at most the sum of their amplitudes (each moves a
     // point by exactly h_i; calm areas only scale them down). The wakes' are not included.
     double displacement = 0.0;
     for (const Wave& wave : waves_.waves) displacement += wave.amplitude;
-    glProgramUniform1f(program, location("max_displacement"), float(displacement));
+    uniform_f("max_displacement", displacement);
+    // A bound on the slope field's second derivatives (1/m^2) for the refinement's test: a
+    // sine's slope h k sin(k x) has second derivatives up to h k^3; a trochoid's slope is
+    // steeper where its crest sharpens, by up to 1 / (1 - k h)^3 (its horizontal compression
+    // at the crest, to the third power: slope and its two derivatives). Calm areas only lower it.
+    double curvature = 0.0;
+    for (const Wave& wave : waves_.waves) {
+      const double steepness = std::min(wave.wavenumber * wave.amplitude, 0.9);
+      curvature += wave.amplitude * std::pow(wave.wavenumber, 3) / std::pow(1.0 - steepness, 3);
+    }
+    uniform_f("slope_curvature", curvature);
+    // The refinement and the segments within the loop budget: the most subcells per side whose
+    // single refined cell fits it (1000 waves at 8 x 8 would not), then the most cells per
+    // invocation whose worst case, every cell refined, does.
+    const int waves = static_cast<int>(waves_.waves.size());
+    const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
+    scatter_refine_ = std::clamp(options_.reference_sun_refine, 1, kScatterMaxRefine);
+    while (scatter_refine_ > 1 &&
+           scatter_iterations(waves, feature, scatter_refine_, 1) > kScatterLoopBudget)
+      --scatter_refine_;
+    scatter_segment_ = 1;
+    while (scatter_segment_ < kScatterMaxCells &&
+           scatter_iterations(waves, feature, scatter_refine_, 2 * scatter_segment_) <=
+               kScatterLoopBudget)
+      scatter_segment_ *= 2;
+    uniform_i("reference_refine", scatter_refine_);
+    uniform_i("reference_segment", scatter_segment_);
     // The margin: how far (pixels) the nearest sea in the image can move on screen, as the
     // shader's per-pixel test (its forward distance over the image's 5 x 5 points seeing the sea).
     double along = INFINITY;
@@ -485,11 +554,20 @@ class OceanNode final : public gl::Node {
                                                     inputs.height / inputs.tan_half_fov_y
                                               : 0.0;
     scatter_margin_ = static_cast<int>(std::min(std::ceil(reach) + 1.0, double(kScatterMaxMargin)));
-    glProgramUniform1i(program, location("margin"), scatter_margin_);
+    uniform_i("margin", scatter_margin_);
     if (local_features_) {
-      local_features_->set_uniforms(program);
+      for (const GLuint program : programs) local_features_->set_uniforms(program);
       local_features_->bind();
     }
+    const std::size_t footprints = std::size_t(inputs.width + 2 * scatter_margin_) *
+                                   std::size_t(inputs.height + 2 * scatter_margin_);
+    if (!footprint_buffer_ || footprint_count_ != footprints) {
+      footprint_buffer_ = gl::make_buffer();
+      glNamedBufferStorage(footprint_buffer_.get(),
+                           static_cast<GLsizeiptr>(footprints * 12 * sizeof(float)), nullptr, 0);
+      footprint_count_ = footprints;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kScatterFootprintBinding, footprint_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
     // The grid's depth, just drawn (the compute pass reads it; nothing renders meanwhile).
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
@@ -497,11 +575,11 @@ class OceanNode final : public gl::Node {
     const double spacing =
         waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
     const int cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
-    run_scatter(program, reference_sun_buffer_.get(), spacing, cap, inputs);
+    run_scatter(programs, reference_sun_buffer_.get(), spacing, cap);
     const bool measure = options_.reference_measure_lattice;
     if (measure)
-      run_scatter(program, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
-                  std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), inputs);
+      run_scatter(programs, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
+                  std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))));
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
     hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
@@ -526,29 +604,37 @@ class OceanNode final : public gl::Node {
     has_scatter_key_ = true;
   }
 
-  // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first.
-  void run_scatter(GLuint program, GLuint buffer, double spacing, int cap,
-                   const gl::FrameInputs& inputs) const {
+  // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first: the
+  // footprints' pass (programs[0]), then the cells' (programs[1]).
+  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
+                   int cap) const {
     const float zero = 0.0f;
     glClearNamedBufferData(buffer, GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReferenceSunBinding, buffer);
-    glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"), float(spacing));
-    glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
-    const std::uint64_t total = std::uint64_t(inputs.width + 2 * scatter_margin_) *
-                                std::uint64_t(inputs.height + 2 * scatter_margin_) *
-                                std::uint64_t(cap);
+    for (const GLuint program : programs) {
+      glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"),
+                         float(spacing));
+      glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
+    }
+    const std::uint64_t segments = (cap + scatter_segment_ - 1) / scatter_segment_;
+    const std::uint64_t total = std::uint64_t(footprint_count_) * std::uint64_t(cap) * segments;
     if (total > 0xffffffffull)
       throw std::invalid_argument(
           "reference sun: " + std::to_string(total) +
-          " rows of cells exceed the lattice's 32-bit index; expected a smaller image or fewer "
-          "sun cells per pixel (--sun-cells)");
-    glUseProgram(program);
-    const GLint first = glGetUniformLocation(program, "first_invocation");
-    for (std::uint64_t start = 0; start < total; start += kScatterBatch) {
-      glProgramUniform1ui(program, first, static_cast<GLuint>(start));
-      const std::uint64_t count = std::min(kScatterBatch, total - start);
-      glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
-    }
+          " segments of rows of cells exceed the lattice's 32-bit index; expected a smaller "
+          "image or fewer sun cells per pixel (--sun-cells)");
+    const auto dispatch = [](GLuint program, std::uint64_t invocations) {
+      glUseProgram(program);
+      const GLint first = glGetUniformLocation(program, "first_invocation");
+      for (std::uint64_t start = 0; start < invocations; start += kScatterBatch) {
+        glProgramUniform1ui(program, first, static_cast<GLuint>(start));
+        const std::uint64_t count = std::min(kScatterBatch, invocations - start);
+        glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+      }
+    };
+    dispatch(programs[0], footprint_count_);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+    dispatch(programs[1], total);
   }
 
   // Each image row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in buffer,
@@ -647,6 +733,12 @@ class OceanNode final : public gl::Node {
   gl::FrameInputs scatter_key_;
   bool has_scatter_key_ = false;
   int scatter_margin_ = 0;
+  // Subcells per side of the cells near the mirror slope, and cells per invocation, as run
+  // (within kScatterLoopBudget).
+  int scatter_refine_ = 1;
+  int scatter_segment_ = 1;
+  gl::Buffer footprint_buffer_;  // 12 floats per footprint, between the scatter's passes
+  std::size_t footprint_count_ = 0;
   double scatter_ms_ = -1.0;
   double lattice_row_change_ = 0.0;
   int lattice_rows_ = 0;  // the rows it was measured on

@@ -215,6 +215,7 @@ struct Renderer::Impl {
            .method = options.method,
            .reference_sun_cells = reference_sun_cells(options.reference),
            .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
+           .reference_sun_refine = options.reference.sun_refine,
            .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
            .reference_measure_lattice = options.reference.measure_lattice,
            .features = features}));
@@ -511,6 +512,7 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_ms = m.node_measurement("reference_sun.ms");
   stats.sun_lattice_hidden = m.node_measurement("reference_sun.hidden_fraction");
   stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
+  stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

@@ -66,8 +66,17 @@
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_cell.glsl"
 
-// One invocation per row of cells of one footprint: (footprint, row) = (id / reference_max_cells,
-// id % reference_max_cells), id = first_invocation + gl_GlobalInvocationID.x.
+// One invocation per segment of reference_segment cells of a row of cells of one footprint:
+// id = first_invocation + gl_GlobalInvocationID.x = (footprint x segments + segment) x
+// reference_max_cells + row, segments = ceil(reference_max_cells / reference_segment).
+//
+// Why segments. llvmpipe (Mesa's CPU renderer, the tests' and CI's) ends every loop of a shader
+// invocation once the invocation has run 65535 loop iterations in all (gallivm's
+// LP_MAX_TGSI_LOOP_ITERATIONS, one counter shared by every loop), silently: a corner then sums
+// a few of its waves, and a row of hundreds of cells, or a refined cell's subcells, came out
+// wrong (stop 22 measured 20-70 % of the far rows' sun lost, and garbage, at 5 x 5 to 8 x 8
+// subcells with 60 waves). The CPU (ocean_node.cpp, scatter_segment) sizes the segments so that
+// an invocation's worst case, every cell refined, stays within half that budget.
 layout(local_size_x = 64) in;
 
 // Two vec4 per wave, longest first (see ocean_geometry.frag).
@@ -82,8 +91,15 @@ uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighti
 // the shortest wavelength / cells per wavelength).
 uniform float reference_spacing;
 uniform int reference_max_cells;  // most cells per footprint side
+// Subcells per side of a cell whose slopes come near the mirror slope (1: none; see
+// ScatterCell), at most REFERENCE_MAX_REFINE.
+uniform int reference_refine;
+// 1/m^2: a bound on the second derivatives of the slope field (sum over the waves of h k^3),
+// for how far a cell's slopes can stray from the bilinear patch of its corners' (ScatterCell).
+uniform float slope_curvature;
 uniform int margin;               // pixels added beyond each edge of the image
 uniform uint first_invocation;    // of this dispatch (the CPU dispatches in batches)
+uniform int reference_segment;    // most cells of a row per invocation (see above)
 // m: a bound on the displacement of every wave together (sum of amplitudes), for the margin's
 // test below.
 uniform float max_displacement;
@@ -98,10 +114,16 @@ uniform float n_min;  // of the wakes' filter weights (every wake wave resolved 
 uniform float n_max;
 #endif
 
-// The pixel whose bits are accumulated before they are added to `sums` (consecutive cells
-// mostly land in one pixel), and what it holds.
-int held_pixel = -1;
-vec4 held = vec4(0.0);
+// Deposits are summed in registers before they are added to `sums`: a float atomic add of one
+// cell's share (1e-12 of a pixel's sun at the lattice's finest) to a pixel's running total
+// (many thousand cells) would round it away. Two slots, because a cell's solid angle goes to
+// the pixel of its centre and its sun to the pixel of its glint: with one slot, every glint in
+// another pixel flushed both, and the refined cells' subcells (their glints mostly in one pixel)
+// were added one by one - up to 72 % of a far row's sun lost at 8 x 8 subcells (stop 22,
+// docs/validation.md). Slot 0 holds a pixel's sun (component 0), slot 1 its solid angles
+// (components 1 to 3); consecutive cells of an invocation's row mostly share both.
+int held_pixel[2] = int[2](-1, -1);
+vec4 held[2] = vec4[2](vec4(0.0), vec4(0.0));
 
 void AtomicAdd(uint index, float value) {
   if (value == 0.0) return;
@@ -114,24 +136,22 @@ void AtomicAdd(uint index, float value) {
   }
 }
 
-void Flush() {
-  if (held_pixel >= 0) {
-    AtomicAdd(4u * uint(held_pixel), held.x);
-    AtomicAdd(4u * uint(held_pixel) + 1u, held.y);
-    AtomicAdd(4u * uint(held_pixel) + 2u, held.z);
-    AtomicAdd(4u * uint(held_pixel) + 3u, held.w);
-  }
-  held_pixel = -1;
-  held = vec4(0.0);
+void Flush(int slot) {
+  if (held_pixel[slot] >= 0)
+    for (int c = 0; c < 4; ++c) AtomicAdd(4u * uint(held_pixel[slot]) + uint(c), held[slot][c]);
+  held_pixel[slot] = -1;
+  held[slot] = vec4(0.0);
 }
 
-void Deposit(int pixel, vec4 value) {
+// Adds value (the pixel's four sums, see Output above) to pixel `pixel` (-1: none) through slot
+// `slot` (0: the sun, 1: the solid angles).
+void Deposit(int slot, int pixel, vec4 value) {
   if (pixel < 0) return;
-  if (pixel != held_pixel) {
-    Flush();
-    held_pixel = pixel;
+  if (pixel != held_pixel[slot]) {
+    Flush(slot);
+    held_pixel[slot] = pixel;
   }
-  held += value;
+  held[slot] += value;
 }
 
 // The image's pixel (row-major from the bottom row) in which the point p (m, nadir frame) is
@@ -200,6 +220,7 @@ struct Corner {
   vec3 position;
   vec3 area;
   vec3 facet;
+  vec2 rest;  // m, nadir frame: the rest point's horizontal position it was computed at
 };
 
 Corner ReferenceCorner(vec2 xy) {
@@ -237,20 +258,27 @@ Corner ReferenceCorner(vec2 xy) {
   corner.position = x + frame * displacement;
   corner.area = frame * n_local;
   corner.facet = frame * vec3(n_local.xy / max(n_local.z, 1e-6), 1.0);
+  corner.rest = xy;
   return corner;
 }
 
-// One cell of corners c00, c10 (along u), c01 (along v), c11 and rest area rest_area (m^2): its
-// deposits. unresolved: 1 if its footprint is over the cap, else 0.
-void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area,
-                 float unresolved, float unresolved_height) {
-  const vec3 centre = 0.25 * (c00.position + c10.position + c01.position + c11.position);
-  const vec3 to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - centre;
-  const float omega =
-      ReferenceCellSolidAngle(0.25 * (c00.area + c10.area + c01.area + c11.area), rest_area,
-                              to_eye);
-  if (!(omega > 0.0)) return;
-  const vec3 v = normalize(to_eye);
+// What one cell of corners c00, c10 (along u), c01 (along v), c11 reflects of the sun toward
+// the eye at `eye_from` (a point of the cell, m, nadir frame): the sun per unit solid angle
+// (OceanCellReflectedSun, in the tangent frame of the cell's mean facet normal), the displaced
+// point of its glint (where its bilinear patch has the mirror slope: ReferenceGlintCoordinates),
+// and for the refinement test the mirror slope and the box of the corners' slopes in that frame,
+// grown by a quarter of the patch's twist (z00 - z10 - z01 + z11), which then holds the
+// parallelogram OceanCellReflectedSun integrates over (its vertices are the corners' slopes
+// moved by +-twist / 4).
+struct CellGlint {
+  float sun;
+  vec3 point;
+  vec2 mirror;
+  vec2 low, high;
+};
+
+CellGlint ReferenceCellGlint(Corner c00, Corner c10, Corner c01, Corner c11, vec3 v) {
+  CellGlint g;
   const vec3 l = FrameSunDirection();
   vec3 n = normalize(c00.facet + c10.facet + c01.facet + c11.facet);
   if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
@@ -266,33 +294,110 @@ void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area
   const vec2 d_v = 0.5 * ((z01 - z00) + (z11 - z10));
   const vec3 v_t = OceanToTangentFrame(v, t_x, t_y, n);
   const vec3 l_t = OceanToTangentFrame(l, t_x, t_y, n);
-  const float sun = OceanCellReflectedSun(v_t, l_t, c, d_u, d_v, fresnel_r);
+  g.sun = OceanCellReflectedSun(v_t, l_t, c, d_u, d_v, fresnel_r);
+  // The mirror slope: that of the half vector, (-h_x, -h_y) / h_z.
+  const vec3 h = normalize(v_t + l_t);
+  g.mirror = -vec2(h.x, h.y) / max(h.z, 1e-6);
+  g.point = ReferenceBilinear(c00.position, c10.position, c01.position, c11.position,
+                              ReferenceGlintCoordinates(c, d_u, d_v, g.mirror));
+  const vec2 twist = 0.25 * abs(z00 - z10 - z01 + z11);
+  g.low = min(min(z00, z10), min(z01, z11)) - twist;
+  g.high = max(max(z00, z10), max(z01, z11)) + twist;
+  return g;
+}
+
+// The most subcells per side of a refined cell (the corner rows ScatterCell keeps).
+#define REFERENCE_MAX_REFINE 8
+// A cell's slopes within this many sigma of the sun's disc (sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE))
+// of the mirror slope are refined: beyond it the disc's Gaussian is below exp(-8) = 3e-4 of its
+// peak, and the cell reflects nothing a finer cut would change.
+const float REFERENCE_REFINE_SIGMAS = 4.0;
+
+// One cell of corners c00, c10 (along u), c01 (along v), c11, rest area rest_area (m^2) and
+// longer rest side `size` (m): its deposits. unresolved: 1 if its footprint is over the cap,
+// else 0.
+//
+// Refinement. The parallelogram a cell's corners span is a linearisation of its slope field:
+// each glint it holds is counted with the secant's 1 / |det dzeta/dx| instead of the tangent's at
+// the glint, an error of the order of the cell's size (its bias, averaged over many glints, of
+// its square: tests/unit/cell_slope_density_test.cpp). Only the few cells whose slopes come near
+// the mirror slope reflect the sun at all (a few per cent at 16 cells per wavelength), so those
+// are cut into reference_refine x reference_refine subcells, each with its own exact corners
+// (every wave) and parallelogram, as if the lattice were that much finer where it matters and
+// no finer elsewhere. A cell's slopes are the patch of its corners' to within slope_curvature x
+// size^2 / 8 (the bilinear interpolant's error for second derivatives below slope_curvature),
+// which widens the test so that a glint the corners' box misses is refined too.
+void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area, float size,
+                 float unresolved, float unresolved_height) {
+  const vec3 centre = 0.25 * (c00.position + c10.position + c01.position + c11.position);
+  const vec3 to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - centre;
+  const float omega =
+      ReferenceCellSolidAngle(0.25 * (c00.area + c10.area + c01.area + c11.area), rest_area,
+                              to_eye);
+  if (!(omega > 0.0)) return;
   const int centre_pixel = PixelOf(centre);
   if (centre_pixel < 0) return;
   if (!GridShows(centre, centre_pixel, unresolved_height)) {
-    Deposit(centre_pixel, vec4(0.0, 0.0, 0.0, omega));
+    Deposit(1, centre_pixel, vec4(0.0, 0.0, 0.0, omega));
     return;
   }
-  if (sun > 0.0) {
-    // The mirror slope: that of the half vector, (-h_x, -h_y) / h_z.
-    const vec3 h = normalize(v_t + l_t);
-    const vec2 mirror = -vec2(h.x, h.y) / max(h.z, 1e-6);
-    const vec2 uv = ReferenceGlintCoordinates(c, d_u, d_v, mirror);
-    const int glint_pixel =
-        PixelOf(ReferenceBilinear(c00.position, c10.position, c01.position, c11.position, uv));
-    Deposit(glint_pixel, vec4(omega * sun, 0.0, 0.0, 0.0));
+  const CellGlint g = ReferenceCellGlint(c00, c10, c01, c11, normalize(to_eye));
+  const float margin = REFERENCE_REFINE_SIGMAS * sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE) +
+                       0.125 * slope_curvature * size * size;
+  const int refine = clamp(reference_refine, 1, REFERENCE_MAX_REFINE);
+  // Footprints over the cap are not compared (their pixels are reported unresolved): their cells
+  // are not refined either.
+  if (refine > 1 && unresolved == 0.0 && all(greaterThanEqual(g.mirror, g.low - margin)) &&
+      all(lessThanEqual(g.mirror, g.high + margin))) {
+    // The subcells, a row of corners at a time (rest positions bilinear in the cell's).
+    Corner below[REFERENCE_MAX_REFINE + 1], above[REFERENCE_MAX_REFINE + 1];
+    const float sub_area = rest_area / float(refine * refine);
+    for (int j = 0; j <= refine; ++j) {
+      const float t = float(j) / float(refine);
+      for (int i = 0; i <= refine; ++i) {
+        const float u = float(i) / float(refine);
+        if ((i == 0 || i == refine) && (j == 0 || j == refine)) {
+          above[i] = j == 0 ? (i == 0 ? c00 : c10) : (i == 0 ? c01 : c11);
+        } else {
+          above[i] = ReferenceCorner(mix(mix(c00.rest, c10.rest, u), mix(c01.rest, c11.rest, u), t));
+        }
+      }
+      if (j > 0) {
+        for (int i = 0; i < refine; ++i) {
+          const Corner s00 = below[i], s10 = below[i + 1], s01 = above[i], s11 = above[i + 1];
+          const vec3 sub_centre =
+              0.25 * (s00.position + s10.position + s01.position + s11.position);
+          const vec3 sub_to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - sub_centre;
+          const float sub_omega = ReferenceCellSolidAngle(
+              0.25 * (s00.area + s10.area + s01.area + s11.area), sub_area, sub_to_eye);
+          if (!(sub_omega > 0.0)) continue;
+          const CellGlint sub = ReferenceCellGlint(s00, s10, s01, s11, normalize(sub_to_eye));
+          if (sub.sun > 0.0)
+            Deposit(0, PixelOf(sub.point), vec4(sub_omega * sub.sun, 0.0, 0.0, 0.0));
+        }
+      }
+      for (int i = 0; i <= refine; ++i) below[i] = above[i];
+    }
+  } else if (g.sun > 0.0) {
+    Deposit(0, PixelOf(g.point), vec4(omega * g.sun, 0.0, 0.0, 0.0));
   }
-  Deposit(centre_pixel, vec4(0.0, omega, omega * unresolved, 0.0));
+  Deposit(1, centre_pixel, vec4(0.0, omega, omega * unresolved, 0.0));
 }
 
+// Pass 1 (REFERENCE_FOOTPRINT_PASS), one invocation per footprint: its rest corners, cells per
+// side and the heights the grid cannot draw, into `footprints` (3 vec4 per footprint: q00.xy,
+// q10.xy; q01.xy, q11.xy; kx, ky (0: nothing to scatter), unresolved, unresolved_height). Pass 2
+// reads them, so that its many invocations past a footprint's rows and segments cost a read.
+layout(std430, binding = 8) buffer ReferenceFootprints { vec4 footprints[]; };
+
+#ifdef REFERENCE_FOOTPRINT_PASS
 void main() {
   const int cap = max(reference_max_cells, 1);
-  const uint id = first_invocation + gl_GlobalInvocationID.x;
+  const uint footprint = first_invocation + gl_GlobalInvocationID.x;
   const int columns = int(frame_viewport.x) + 2 * margin;
   const int rows = int(frame_viewport.y) + 2 * margin;
-  const uint footprint = id / uint(cap);
-  const int j = int(id % uint(cap));
   if (footprint >= uint(columns * rows)) return;
+  footprints[3u * footprint + 2u] = vec4(0.0);  // nothing, unless it is kept below
   const vec2 pixel = vec2(float(int(footprint) % columns - margin),
                           float(int(footprint) / columns - margin));
   bool h00, h10, h01, h11;
@@ -319,9 +424,8 @@ void main() {
   const float spacing = max(reference_spacing, 1e-6);
   const float want_x = ceil(max(distance(q00, q10), distance(q01, q11)) / spacing);
   const float want_y = ceil(max(distance(q00, q01), distance(q10, q11)) / spacing);
-  const int kx = int(clamp(want_x, 1.0, float(cap)));
-  const int ky = int(clamp(want_y, 1.0, float(cap)));
-  if (j >= ky) return;
+  const float kx = clamp(want_x, 1.0, float(cap));
+  const float ky = clamp(want_y, 1.0, float(cap));
   const float unresolved = (want_x <= float(cap) && want_y <= float(cap)) ? 0.0 : 1.0;
   // The heights of the waves the grid (a vertex per pixel) cannot draw: shorter than 2
   // footprints (the wakes' are not counted).
@@ -330,15 +434,47 @@ void main() {
   float unresolved_height = 0.0;
   for (int i = 0; i < wave_count; ++i)
     if (waves[2 * i + 1].y < 2.0 * footprint_size) unresolved_height += waves[2 * i].w;
-  // The rows j and j + 1 of corners, left to right, two corners at a time.
+  footprints[3u * footprint] = vec4(q00.xy, q10.xy);
+  footprints[3u * footprint + 1u] = vec4(q01.xy, q11.xy);
+  footprints[3u * footprint + 2u] = vec4(kx, ky, unresolved, unresolved_height);
+}
+#else
+// Pass 2: one invocation per segment of a row of cells of a footprint (see above).
+void main() {
+  const int cap = max(reference_max_cells, 1);
+  const int segment_cells = max(reference_segment, 1);
+  const int segments = (cap + segment_cells - 1) / segment_cells;
+  // Consecutive invocations take consecutive rows of one segment: the SIMD lanes of a work group
+  // (llvmpipe runs 8 in lockstep) are then active or idle together.
+  const uint id = first_invocation + gl_GlobalInvocationID.x;
+  const int j = int(id % uint(cap));
+  const uint segment_id = id / uint(cap);
+  const int segment = int(segment_id % uint(segments));
+  const uint footprint = segment_id / uint(segments);
+  const int columns = int(frame_viewport.x) + 2 * margin;
+  const int rows = int(frame_viewport.y) + 2 * margin;
+  if (footprint >= uint(columns * rows)) return;
+  const vec4 cells = footprints[3u * footprint + 2u];
+  const int kx = int(cells.x), ky = int(cells.y);
+  const int first = segment * segment_cells;
+  if (j >= ky || first >= kx) return;  // (kx = ky = 0: a footprint with nothing to scatter)
+  const int last = min(kx, first + segment_cells);
+  const float unresolved = cells.z;
+  const float unresolved_height = cells.w;
+  const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
+  const vec2 q00 = q0.xy, q10 = q0.zw, q01 = q1.xy, q11 = q1.zw;
+  // The rows j and j + 1 of corners, cells first to last - 1 of them, left to right, two corners
+  // at a time.
   const float v0 = float(j) / float(ky), v1 = float(j + 1) / float(ky);
-  const vec2 a0 = mix(q00.xy, q01.xy, v0), b0 = mix(q10.xy, q11.xy, v0);
-  const vec2 a1 = mix(q00.xy, q01.xy, v1), b1 = mix(q10.xy, q11.xy, v1);
-  Corner low = ReferenceCorner(a0);
-  Corner high = ReferenceCorner(a1);
-  vec3 low_rest = vec3(a0, ReferenceRestHeight(frame_sea_curvature, a0));
-  vec3 high_rest = vec3(a1, ReferenceRestHeight(frame_sea_curvature, a1));
-  for (int i = 1; i <= kx; ++i) {
+  const vec2 a0 = mix(q00, q01, v0), b0 = mix(q10, q11, v0);
+  const vec2 a1 = mix(q00, q01, v1), b1 = mix(q10, q11, v1);
+  const float u0 = float(first) / float(kx);
+  const vec2 first_low = mix(a0, b0, u0), first_high = mix(a1, b1, u0);
+  Corner low = ReferenceCorner(first_low);
+  Corner high = ReferenceCorner(first_high);
+  vec3 low_rest = vec3(first_low, ReferenceRestHeight(frame_sea_curvature, first_low));
+  vec3 high_rest = vec3(first_high, ReferenceRestHeight(frame_sea_curvature, first_high));
+  for (int i = first + 1; i <= last; ++i) {
     const float u = float(i) / float(kx);
     const vec2 low_xy = mix(a0, b0, u), high_xy = mix(a1, b1, u);
     const Corner next_low = ReferenceCorner(low_xy);
@@ -348,12 +484,14 @@ void main() {
     // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
     const vec3 e_u = 0.5 * ((next_low_rest - low_rest) + (next_high_rest - high_rest));
     const vec3 e_v = 0.5 * ((high_rest - low_rest) + (next_high_rest - next_low_rest));
-    ScatterCell(low, next_low, high, next_high, length(cross(e_u, e_v)), unresolved,
-                unresolved_height);
+    ScatterCell(low, next_low, high, next_high, length(cross(e_u, e_v)),
+                max(length(e_u), length(e_v)), unresolved, unresolved_height);
     low = next_low;
     high = next_high;
     low_rest = next_low_rest;
     high_rest = next_high_rest;
   }
-  Flush();
+  Flush(0);
+  Flush(1);
 }
+#endif

@@ -136,11 +136,10 @@ TEST(ValidationMetrics, RowRatiosAreUndefinedBelowTheSignificantFractionOfTheBri
   const double bright = 2.0;
   const double just_above = 1.01 * kSignificantRowFraction * bright;
   const double just_below = 0.99 * kSignificantRowFraction * bright;
-  const std::vector<ChannelValues> reference = {
-      {bright, bright, bright, bright},
-      {just_above, just_above, just_above, just_above},
-      {just_below, just_below, just_below, just_below},
-      {1e-12, 1e-12, 1e-12, 1e-12}};
+  const std::vector<ChannelValues> reference = {{bright, bright, bright, bright},
+                                                {just_above, just_above, just_above, just_above},
+                                                {just_below, just_below, just_below, just_below},
+                                                {1e-12, 1e-12, 1e-12, 1e-12}};
   std::vector<ChannelValues> method = reference;
   for (ChannelValues& row : method) row = {row.l * 3.0, row.r * 3.0, row.g * 3.0, row.b * 3.0};
   method[3] = {1e-6, 1e-6, 1e-6, 1e-6};  // float noise: a ratio of 1e6 if it counted
@@ -375,9 +374,8 @@ TEST(ValidationMetrics, ReferenceForComparisonTakesTheSeaAloneAtSeaPixels) {
   EXPECT_EQ(out.pixel(2, 1)[1], 1.0f);
   EXPECT_EQ(out.pixel(0, 0)[1], 1.0f);
   EXPECT_EQ(reference_for_comparison(reference, Image{}, mask).rgba, reference.rgba);
-  EXPECT_THROW(
-      reference_for_comparison(reference, Image{2, 2, std::vector<float>(16, 0.0f)}, mask),
-      std::invalid_argument);
+  EXPECT_THROW(reference_for_comparison(reference, Image{2, 2, std::vector<float>(16, 0.0f)}, mask),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -115,6 +115,7 @@ Report synthetic_report() {
   report.reference.sun_normal_samples = 4096;
   report.reference.sun_cells_per_wavelength = 12.5;
   report.reference.sun = "gathered";  // not the default: read back as written
+  report.reference.sun_refine = 4;
   report.version = "0.1.0";
   CaseResult c;
   c.name = "wind10_100m_low_sun";
@@ -160,7 +161,8 @@ Report synthetic_report() {
   bad.expected_exit = 2;
   bad.expected_error = "camera.lat: expected";
   bad.exit_status = 2;
-  bad.message = "v.json: cases[1].set: camera.lat: expected a number in [-90, 90] (degrees), got 90.5";
+  bad.message =
+      "v.json: cases[1].set: camera.lat: expected a number in [-90, 90] (degrees), got 90.5";
   report.cases.push_back(bad);
   return report;
 }
@@ -214,6 +216,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   }
   EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
   EXPECT_NE(index.find("its sun gathered in cells"), std::string::npos);
+  EXPECT_NE(index.find("cut into 4 x 4 subcells"), std::string::npos);
   EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%;"), std::string::npos);
   EXPECT_EQ(index.find("<markup>"), std::string::npos);
   EXPECT_EQ(index.find("=\"/"), std::string::npos);  // no absolute link
@@ -310,6 +313,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.reference.sun_normal_samples, report.reference.sun_normal_samples);
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   EXPECT_EQ(back.reference.sun, report.reference.sun);
+  EXPECT_EQ(back.reference.sun_refine, report.reference.sun_refine);
   ASSERT_EQ(back.cases.size(), 2u);
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());

@@ -402,6 +402,8 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "8192"},
       {R"({"suite": "s", "reference": {"sun": "sampled"}, "cases": [)" + ok_case + "]}",
        "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
+      {R"({"suite": "s", "reference": {"sun_refine": 9}, "cases": [)" + ok_case + "]}",
+       "t.json: reference.sun_refine: expected an integer in [1, 8], got 9"},
       {R"({"suite": "s", "horizon": {"depth_deg": 5, "bin_deg": 6}, "cases": [)" + ok_case + "]}",
        "t.json: horizon.bin_deg: expected a number in (0, 5] (degrees; at most depth_deg), got 6"},
       {R"({"suite": "s", "base": {"image.width": 0}, "cases": [)" + ok_case + "]}",

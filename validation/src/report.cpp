@@ -538,7 +538,13 @@ std::string index_html(const Report& report,
        html(report.reference.sun) + " in cells of at most 1/" +
        short_number(report.reference.sun_cells_per_wavelength) +
        " of the shortest wavelength, at most " + std::to_string(report.reference.sun_cells()) +
-       " per pixel side.</p>\n";
+       " per pixel side" +
+       (report.reference.sun_refine > 1
+            ? ", those whose slopes come near the mirror slope cut into " +
+                  std::to_string(report.reference.sun_refine) + " x " +
+                  std::to_string(report.reference.sun_refine) + " subcells"
+            : std::string()) +
+       ".</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
          " of its " + std::to_string(report.suite_cases) +
@@ -680,6 +686,7 @@ std::string report_json(const Report& report) {
                     {"sun_normal_samples", report.reference.sun_normal_samples},
                     {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
                     {"sun", report.reference.sun},
+                    {"sun_refine", report.reference.sun_refine},
                     {"check_convergence", report.reference.check_convergence}};
   j["suite_cases"] = std::max(report.suite_cases, static_cast<int>(report.cases.size()));
   j["cases"] = ojson::array();
@@ -776,6 +783,7 @@ Report report_from_json(const std::string& json_text) {
     report.reference.sun_normal_samples = jr.at("sun_normal_samples");
     report.reference.sun_cells_per_wavelength = get_number(jr.at("sun_cells_per_wavelength"));
     report.reference.sun = jr.value("sun", std::string("gathered"));  // older reports gathered
+    report.reference.sun_refine = jr.value("sun_refine", 1);          // and did not refine
     report.reference.check_convergence = jr.at("check_convergence");
   }
   for (const ojson& jc : j.at("cases")) {

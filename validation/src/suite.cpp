@@ -347,7 +347,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     if (!r.is_object())
       fail(source, "reference",
            "an object {\"pixel_samples\", \"pixel_samples_without_sun\", "
-           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"sun\", "
+           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"sun\", \"sun_refine\", "
            "\"check_convergence\"}",
            describe(r));
     static constexpr std::string_view kReferenceKeys[] = {"pixel_samples",
@@ -355,6 +355,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
                                                           "sun_normal_samples",
                                                           "sun_cells_per_wavelength",
                                                           "sun",
+                                                          "sun_refine",
                                                           "check_convergence"};
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
@@ -376,6 +377,9 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
         fail(source, "reference.sun", "\"scattered\" or \"gathered\"", describe(sun));
       suite.reference.sun = sun.get<std::string>();
     }
+    if (r.contains("sun_refine"))
+      suite.reference.sun_refine =
+          integer_at(r["sun_refine"], source, "reference.sun_refine", 1, 8);
     if (r.contains("check_convergence"))
       suite.reference.check_convergence =
           bool_at(r["check_convergence"], source, "reference.check_convergence");
@@ -521,6 +525,7 @@ std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string
                          {"sun_normal_samples", r.sun_normal_samples},
                          {"sun_cells_per_wavelength", r.sun_cells_per_wavelength},
                          {"sun", r.sun},
+                         {"sun_refine", r.sun_refine},
                          {"check_convergence", r.check_convergence}};
   inputs["horizon"] = {{"depth_deg", suite.horizon.depth_deg}, {"bin_deg", suite.horizon.bin_deg}};
   inputs["expected_exit"] = c.expected_exit;

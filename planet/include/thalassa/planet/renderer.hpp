@@ -54,13 +54,16 @@ struct RenderStats {
   // the cells (the sun's convergence test: its "normal samples",
   // shaders/ocean/reference_sun_scatter.comp), measured on the sun_lattice_rows rows whose sea
   // the coarser lattice resolves; the wall-clock ms of the two lattices (counted once in the
-  // reference's frame time); the pixels the lattice reached beyond each image edge; and the
-  // fraction of the front-facing sea's solid angle that the grid's crests hid.
+  // reference's frame time); the pixels the lattice reached beyond each image edge; the
+  // fraction of the front-facing sea's solid angle that the grid's crests hid; and the subcells
+  // per side its cells near the mirror slope were cut into (ReferenceSampling::sun_refine, lower
+  // where the shader's loop budget on llvmpipe would not hold one refined cell).
   double sun_lattice_row_change = 0.0;
   int sun_lattice_rows = 0;
   double sun_lattice_ms = 0.0;
   int sun_lattice_margin = 0;
   double sun_lattice_hidden = 0.0;
+  int sun_lattice_refine = 0;
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
@@ -127,6 +130,10 @@ struct ReferenceSampling {
   int sun_cells = 256;
   double sun_cells_per_wavelength = 16.0;
   ReferenceSun sun = ReferenceSun::scattered;
+  // Scattered: cells whose slopes come near the mirror slope (the few that reflect the sun) are
+  // cut into sun_refine x sun_refine subcells, [1, 8] (1: none), as if the lattice were that much
+  // finer where the glints are (shaders/ocean/reference_sun_scatter.comp, ScatterCell).
+  int sun_refine = 4;
   // Scattered: also scatter the lattice of half the cells, whose difference is the sun's
   // convergence (RenderStats::sun_lattice_row_change; about a third more time). Off, the
   // statistics report no lattice rows (sun_lattice_rows 0): for frames whose convergence is

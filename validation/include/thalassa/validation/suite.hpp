@@ -104,6 +104,9 @@ struct ReferenceSettings {
   // reported as MethodResult::lattice_convergence) or "gathered" (per sample over its pixel
   // stratum). planet/renderer.hpp, ReferenceSun.
   std::string sun = "scattered";
+  // Scattered: subcells per side of the cells whose slopes come near the mirror slope, [1, 8]
+  // (1: none; ReferenceSampling::sun_refine).
+  int sun_refine = 4;
   bool check_convergence = false;
 
   // The most samples per pixel of a term with the sun or without it.

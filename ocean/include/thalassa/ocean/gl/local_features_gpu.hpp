@@ -35,6 +35,10 @@ class LocalFeatureBuffers {
   void bind() const;
   // "ocean.calm_areas.N" (N areas in view, chart WxH), "ocean.kelvin_wakes.N".
   std::vector<std::string> built() const;
+  // An upper estimate of the loop iterations local_waves.glsl runs at one point of the sea with
+  // these features (its loops over the wakes and over each wake's track pieces, for the
+  // displacement and the normals): what a shader's loop budget must allow per point.
+  int loop_iterations_per_point() const;
 
  private:
   gl::Texture calm_texture_;
@@ -45,6 +49,7 @@ class LocalFeatureBuffers {
   glm::dvec2 calm_origin_{0.0};
   double calm_spacing_ = 1.0;
   int wake_count_ = 0;
+  int track_points_ = 0;  // of every wake's track together
 };
 
 }  // namespace thalassa::ocean

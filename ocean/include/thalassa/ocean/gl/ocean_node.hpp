@@ -43,6 +43,9 @@ struct OceanNodeOptions {
   // or pixel whose footprint needs more is drawn with the most and marked unresolved.
   int reference_sun_cells = 256;
   double reference_cells_per_wavelength = 16.0;
+  // With the scatter: each cell whose slopes come near the mirror slope is cut into this many
+  // subcells per side, [1, 8] (1: none; reference_sun_scatter.comp, ScatterCell).
+  int reference_sun_refine = 4;
   bool reference_sun_scatter = true;
   // With the scatter: also the lattice of half the cells, for its convergence (ReferenceSampling::
   // measure_lattice).
