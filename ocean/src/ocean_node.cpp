@@ -36,10 +36,11 @@ constexpr int kScatterMaxCells = 1024;
 // The most subcells per side of a scattered cell that comes near the mirror slope
 // (reference_sun_scatter.comp's REFERENCE_MAX_REFINE).
 constexpr int kScatterMaxRefine = 8;
-// Loop iterations one scatter invocation may run: half of llvmpipe's limit per invocation
-// (Mesa's gallivm LP_MAX_TGSI_LOOP_ITERATIONS = 65535, shared by all of an invocation's loops,
-// past which every loop silently stops: reference_sun_scatter.comp, "Why segments").
-constexpr double kScatterLoopBudget = 32768.0;
+// Loop iterations one shader invocation of the reference's sun may run: half of llvmpipe's limit
+// per invocation (Mesa's gallivm LP_MAX_TGSI_LOOP_ITERATIONS = 65535, shared by all of an
+// invocation's loops, past which every loop silently stops: reference_sun_scatter.comp, "Why
+// segments"). The scatter's segments and the gathered sun's cells per stratum keep within it.
+constexpr double kShaderLoopBudget = 32768.0;
 
 // The scatter's loop iterations per invocation (an upper estimate of the shader's loops: each
 // corner's wave loop and the features' loops, the segment's fixed work, and per cell its two new
@@ -369,8 +370,16 @@ class OceanNode final : public gl::Node {
     glProgramUniform1f(
         program, glGetUniformLocation(program, "reference_spacing"),
         float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0)));
-    glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"),
-                       std::clamp(options_.reference_sun_cells, 1, kReferenceMaxCells));
+    // At most (cells + 1)^2 corners per fragment, each running the wave loop (and the wakes'),
+    // besides the fragment's own normal: within the loop budget (31 x 31 cells at most for 30
+    // waves, 22 x 22 for 60, 15 x 15 for 120; strata that need more are reported unresolved).
+    const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
+    const double corner = double(waves_.waves.size()) + 1.0 + feature;
+    const int budget_cells =
+        std::max(1, static_cast<int>(std::sqrt((kShaderLoopBudget - 2.0 * corner) / corner)) - 1);
+    glProgramUniform1i(
+        program, glGetUniformLocation(program, "reference_max_cells"),
+        std::clamp(options_.reference_sun_cells, 1, std::min(kReferenceMaxCells, budget_cells)));
     glProgramUniform1f(program, glGetUniformLocation(program, "fresnel_r"),
                        float(options_.settings.fresnel_r));
   }
@@ -531,12 +540,12 @@ class OceanNode final : public gl::Node {
     const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
     scatter_refine_ = std::clamp(options_.reference_sun_refine, 1, kScatterMaxRefine);
     while (scatter_refine_ > 1 &&
-           scatter_iterations(waves, feature, scatter_refine_, 1) > kScatterLoopBudget)
+           scatter_iterations(waves, feature, scatter_refine_, 1) > kShaderLoopBudget)
       --scatter_refine_;
     scatter_segment_ = 1;
     while (scatter_segment_ < kScatterMaxCells &&
            scatter_iterations(waves, feature, scatter_refine_, 2 * scatter_segment_) <=
-               kScatterLoopBudget)
+               kShaderLoopBudget)
       scatter_segment_ *= 2;
     uniform_i("reference_refine", scatter_refine_);
     uniform_i("reference_segment", scatter_segment_);
@@ -734,7 +743,7 @@ class OceanNode final : public gl::Node {
   bool has_scatter_key_ = false;
   int scatter_margin_ = 0;
   // Subcells per side of the cells near the mirror slope, and cells per invocation, as run
-  // (within kScatterLoopBudget).
+  // (within kShaderLoopBudget).
   int scatter_refine_ = 1;
   int scatter_segment_ = 1;
   gl::Buffer footprint_buffer_;  // 12 floats per footprint, between the scatter's passes
