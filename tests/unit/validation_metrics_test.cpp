@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -84,6 +85,7 @@ TEST(ValidationMetrics, IdenticalImagesGiveZeroErrorAndRowRatiosOfOne) {
   EXPECT_GT(defined, 20);
   EXPECT_LT(defined, 64);  // rows above the horizon see no sea: ratios undefined there
   EXPECT_EQ(m.max_row_deviation, 0.0);
+  EXPECT_EQ(m.mean_row_deviation, 0.0);
   ASSERT_GT(m.horizon.pixels, 0);
   EXPECT_EQ(m.horizon.mean, 0.0);
   EXPECT_EQ(m.horizon.std, 0.0);
@@ -105,6 +107,7 @@ TEST(ValidationMetrics, ImageScaledByKGivesRowRatiosKAndRelativeErrorsAbsKMinusO
       EXPECT_NEAR(m.row_ratios[y].b, k, tolerance) << "row " << y;
     }
     EXPECT_NEAR(m.max_row_deviation, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.mean_row_deviation, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_l1.l, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_l1.g, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_rms.l, std::abs(k - 1.0), tolerance);
@@ -152,6 +155,20 @@ TEST(ValidationMetrics, RowRatiosAreUndefinedBelowTheSignificantFractionOfTheBri
   EXPECT_TRUE(std::isnan(ratios[2].r));
   EXPECT_TRUE(std::isnan(ratios[3].l));
   EXPECT_NEAR(max_row_deviation(ratios), 2.0, 1e-12);
+  EXPECT_NEAR(mean_row_deviation(ratios), 2.0, 1e-12);  // the two defined rows only
+}
+
+// The mean deviation is over the defined rows only, each counting once, and undefined (not 0)
+// when no row is: a term the reference does not light has no fig. 10 curve to be close to.
+TEST(ValidationMetrics, MeanRowDeviationAveragesTheDefinedRows) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<ChannelValues> ratios = {
+      {nan, nan, nan, nan}, {1.5, 9, 9, 9}, {0.25, 9, 9, 9}, {1.0, 9, 9, 9}};
+  EXPECT_NEAR(mean_row_deviation(ratios), (0.5 + 0.75 + 0.0) / 3.0, 1e-15);
+  EXPECT_NEAR(max_row_deviation(ratios), 0.75, 1e-15);
+  EXPECT_TRUE(std::isnan(mean_row_deviation({{nan, nan, nan, nan}})));
+  EXPECT_TRUE(std::isnan(mean_row_deviation({})));
+  EXPECT_EQ(max_row_deviation({}), 0.0);
 }
 
 TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethodIsBlackToo) {

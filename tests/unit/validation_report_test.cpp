@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -80,6 +81,7 @@ TermMetrics synthetic_metrics(double seed, int rows) {
                                  : ChannelValues{1.0 + t / 100, 1.0 - t / 300, 1.0 / 3.0, 0.9});
   }
   m.max_row_deviation = seed / 100.0 + 1.0 / 3.0;
+  m.mean_row_deviation = seed / 300.0 + 1.0 / 7.0;
   m.error.pixels = 1234;
   m.error.relative_l1 = {seed / 10 + 1e-17, 0.1 / 3, 0.2 / 3, 0.3 / 7};
   m.error.relative_rms = {seed / 9, 0.11, 0.12, NAN};
@@ -183,14 +185,16 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   options.plot_width = 640;
   options.plot_height = 400;
   const std::vector<std::string> written = write_report(report, dir_.string(), options);
-  for (const char* name :
-       {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv", "index.html"})
+  for (const char* name : {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv",
+                           "summary.csv", "claim.csv", "index.html"})
     EXPECT_TRUE(std::find(written.begin(), written.end(), name) != written.end()) << name;
   const std::string c = report.cases[0].name;
   // Per term: rows and horizon; per case: error against time. The case that did not render has
   // no plots.
-  const std::vector<std::string> plots = {c + "_sun_rows", c + "_all_rows", c + "_error_time",
-                                          c + "_sun_horizon", c + "_all_horizon"};
+  const std::vector<std::string> plots = {c + "_sun_rows",    c + "_all_rows",
+                                          c + "_error_time",  c + "_sun_horizon",
+                                          c + "_all_horizon", "summary_sun_height",
+                                          "summary_all_height"};
   for (const std::string& p : plots) {
     for (const char* ext : {".dat", ".gp", ".png"}) {
       const std::string rel = "plots/" + p + ext;
@@ -202,7 +206,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_EQ(png.height, 400) << p;
   }
   for (const std::string& rel : written) EXPECT_TRUE(fs::is_regular_file(dir_ / rel)) << rel;
-  EXPECT_EQ(written.size(), 6u + 3u * plots.size());
+  EXPECT_EQ(written.size(), 8u + 3u * plots.size());
   // Nothing pending or temporary is left.
   for (const auto& entry : fs::recursive_directory_iterator(dir_))
     EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
@@ -269,6 +273,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     expect_same(csv_number(f[col["rel_l1_b"]]), t.metrics.error.relative_l1.b, what + " l1 b");
     expect_same(csv_number(f[col["rel_rms_b"]]), t.metrics.error.relative_rms.b, what + " rms b");
     expect_same(csv_number(f[col["max_row_deviation"]]), t.metrics.max_row_deviation, what);
+    expect_same(csv_number(f[col["mean_row_deviation"]]), t.metrics.mean_row_deviation, what);
     expect_same(csv_number(f[col["horizon_std"]]), t.metrics.horizon.std, what + " std");
     expect_same(csv_number(f[col["flicker"]]), t.flicker.value_or(NAN), what + " flicker");
     expect_same(csv_number(f[col["reference_flicker"]]),
@@ -339,6 +344,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
       expect_same(x.flicker.value_or(NAN), w.flicker.value_or(NAN), what);
       expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);
       expect_same(x.metrics.error.relative_l1.l, w.metrics.error.relative_l1.l, what);
+      expect_same(x.metrics.mean_row_deviation, w.metrics.mean_row_deviation, what);
       expect_same(x.metrics.error.relative_rms.b, w.metrics.error.relative_rms.b, what);
       expect_same(x.metrics.error.mean_abs.l, w.metrics.error.mean_abs.l, what);
       EXPECT_EQ(x.metrics.error.pixels, w.metrics.error.pixels);
@@ -358,6 +364,93 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   // Undefined numbers are null in the JSON, never NaN text.
   EXPECT_EQ(read_text(dir_ / "results.json").find("NaN"), std::string::npos);
   EXPECT_EQ(report_json(back), report_json(report));
+}
+
+// A report of stop 22 or before has no mean_row_deviation: it is read back as its rows' mean.
+TEST_F(ValidationReport, AnOlderReportGetsItsMeanRowDeviationFromItsRows) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(synthetic_report()));
+  for (auto& jm : j["cases"][0]["methods"])
+    for (auto& jt : jm["terms"]) jt.erase("mean_row_deviation");
+  const Report back = report_from_json(j.dump());
+  for (const MethodResult& m : back.cases[0].methods)
+    for (const TermResult& t : m.terms)
+      EXPECT_EQ(t.metrics.mean_row_deviation, mean_row_deviation(t.metrics.row_ratios)) << m.name;
+}
+
+// Over the cases: per method and term the median and the largest of each case's errors, the
+// reference left out; fig. 10's claim only for the cases at 100 m or higher, by the mean row
+// deviation, not holding where either method's is undefined.
+TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Report report;
+  const auto add_case = [&](const std::string& name, double height, double full_l1,
+                            double full_rows, double basic_rows) {
+    CaseResult c;
+    c.name = name;
+    c.camera_height = height;
+    for (const char* method : {"reference", "basic", "full"}) {
+      MethodResult m{method, method, true, {}, {}};
+      TermResult t;
+      t.term = "sky";
+      t.frame_ms = method == std::string("full") ? height : 1.0;
+      t.metrics.row_totals = {{1.0, 1.0, 1.0, 1.0}};  // measured
+      t.metrics.error.relative_l1.l = method == std::string("full") ? full_l1 : 0.5;
+      t.metrics.mean_row_deviation = method == std::string("full")    ? full_rows
+                                     : method == std::string("basic") ? basic_rows
+                                                                      : 0.0;
+      m.terms.push_back(t);
+      c.methods.push_back(m);
+    }
+    report.cases.push_back(c);
+  };
+  add_case("near", 4.0, 0.3, 0.9, 0.1);  // below 100 m: not in the claim
+  add_case("mid", 100.0, 0.1, 0.05, 0.2);
+  add_case("far", 8000.0, 0.2, 0.3, 0.25);
+  add_case("dark", 1000.0, nan, nan, 0.4);
+  const std::vector<SummaryLine> lines = summarize(report);
+  ASSERT_EQ(lines.size(), 2u);  // basic and full, sky; no line for the reference
+  EXPECT_EQ(lines[0].method, "basic");
+  const SummaryLine& full = lines[1];
+  EXPECT_EQ(full.method, "full");
+  EXPECT_EQ(full.term, "sky");
+  EXPECT_EQ(full.cases, 4);
+  EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2 (undefined left out)
+  EXPECT_DOUBLE_EQ(full.worst_relative_l1, 0.3);
+  EXPECT_DOUBLE_EQ(full.median_row_deviation, 0.3);  // of 0.9, 0.05, 0.3
+  EXPECT_DOUBLE_EQ(full.worst_row_deviation, 0.9);
+  EXPECT_DOUBLE_EQ(full.median_frame_ms, 0.5 * (100.0 + 1000.0));  // of 4, 100, 1000, 8000
+  EXPECT_DOUBLE_EQ(lines[0].median_relative_l1, 0.5);
+  const std::vector<ClaimLine> claim = fig10_claim(report);
+  ASSERT_EQ(claim.size(), 3u);
+  EXPECT_EQ(claim[0].case_name, "mid");
+  EXPECT_TRUE(claim[0].holds());
+  EXPECT_EQ(claim[1].case_name, "far");
+  EXPECT_FALSE(claim[1].holds());
+  EXPECT_EQ(claim[2].case_name, "dark");
+  EXPECT_FALSE(claim[2].holds());
+  write_report(report, dir_.string());
+  const auto csv = parse_csv(read_text(dir_ / "claim.csv"));
+  ASSERT_EQ(csv.size(), 4u);
+  EXPECT_EQ(csv[1][5], "1");
+  EXPECT_EQ(csv[2][5], "0");
+  EXPECT_EQ(csv[3][3], "");  // undefined: empty
+  EXPECT_NE(read_text(dir_ / "index.html").find("it holds in 1 of 3 cases and terms"),
+            std::string::npos);
+  const std::string heights = read_text(dir_ / "plots" / "summary_sky_height.dat");
+  EXPECT_NE(heights.find("\n4 0.10000000000000001 0.90000000000000002\n"), std::string::npos)
+      << heights;
+}
+
+// No row defined anywhere (the reference's sun resolved none): gnuplot refuses a plot of no
+// point, so there is no summary plot, and the report is still written.
+TEST_F(ValidationReport, NoDefinedRowDeviationDrawsNoSummaryPlot) {
+  Report report = synthetic_report();
+  for (MethodResult& m : report.cases[0].methods)
+    for (TermResult& t : m.terms) t.metrics.mean_row_deviation = NAN;
+  const std::vector<std::string> written = write_report(report, dir_.string());
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "index.html"));
+  EXPECT_FALSE(fs::exists(dir_ / "plots" / "summary_sun_height.png"));
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "plots" / (report.cases[0].name + "_sun_rows.png")));
 }
 
 TEST_F(ValidationReport, MissingGnuplotIsARunTimeErrorBeforeAnyFileIsWritten) {

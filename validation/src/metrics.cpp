@@ -162,6 +162,17 @@ double max_row_deviation(const std::vector<ChannelValues>& ratios) {
   return worst;
 }
 
+double mean_row_deviation(const std::vector<ChannelValues>& ratios) {
+  double sum = 0.0;
+  int rows = 0;
+  for (const ChannelValues& r : ratios)
+    if (std::isfinite(r.l)) {
+      sum += std::abs(r.l - 1.0);
+      ++rows;
+    }
+  return rows > 0 ? sum / rows : kNaN;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Errors over the sea
 
@@ -345,6 +356,7 @@ TermMetrics compare_images(const Image& method, const Image& reference, const Vi
   m.row_totals = row_totals(method, &mask);
   m.row_ratios = row_ratios(m.row_totals, row_totals(reference, &mask));
   m.max_row_deviation = max_row_deviation(m.row_ratios);
+  m.mean_row_deviation = mean_row_deviation(m.row_ratios);
   m.error = relative_errors(method, reference, mask);
   m.horizon = horizon_band(method, reference, view, options, compared);
   return m;

@@ -250,8 +250,9 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
                        "set key outside right\nset grid\nset xlabel 'image row (0 = top)'\n"
                        // The same left margin in both panels, so that their rows line up.
                        "set lmargin 15\n"
-                       "set xrange [0:" +
-                       std::to_string(rows > 0 ? rows - 1 : 0) +
+                       // Half a row each side: an image of one row has a range too.
+                       "set xrange [-0.5:" +
+                       number(static_cast<double>(rows) - 0.5) +
                        "]\n"
                        "set ylabel \"row total luminance\\n(W m^-2 sr^-1 nm^-1)\"\nplot ";
   // Each method keeps its colour (line type i + 1) in both panels: the ratio panel's line of 1
@@ -399,6 +400,81 @@ std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, cons
   return draw(gnuplot, plots, name, data, script, options);
 }
 
+// The median of the finite values (NaN when there is none).
+double median_of(std::vector<double> values) {
+  std::erase_if(values, [](double v) { return !std::isfinite(v); });
+  if (values.empty()) return kNaN;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+// The largest of the finite values (NaN when there is none).
+double max_of(const std::vector<double>& values) {
+  double worst = kNaN;
+  for (double v : values)
+    if (std::isfinite(v) && !(v <= worst)) worst = v;
+  return worst;
+}
+
+// Over the cases: each plain method's mean |row ratio - 1| against the camera's height, the
+// median over the cases at each height (fig. 10 across distances).
+std::string summary_height_plot(const std::string& gnuplot, const fs::path& plots,
+                                const Report& report, const std::string& term,
+                                const ReportOptions& options) {
+  std::vector<std::string> methods;
+  std::vector<double> heights;
+  for (const CaseResult& c : report.cases)
+    for (const MethodResult& m : c.methods) {
+      if (!m.plain || m.method == "reference") continue;
+      const TermResult* t = term_of(m, term);
+      if (!t || !measured(*t)) continue;
+      if (std::find(methods.begin(), methods.end(), m.name) == methods.end())
+        methods.push_back(m.name);
+      if (std::find(heights.begin(), heights.end(), c.camera_height) == heights.end())
+        heights.push_back(c.camera_height);
+    }
+  if (methods.empty()) return "";
+  std::sort(heights.begin(), heights.end());
+  bool any = false;  // gnuplot refuses a plot with no defined point: then there is no plot
+  std::string data = "# camera_height_m";
+  for (const std::string& m : methods) data += " " + m;
+  data += "\n# the median over the cases at that height of the mean |row ratio - 1| (luminance)\n";
+  for (double height : heights) {
+    data += number(height);
+    for (const std::string& name : methods) {
+      std::vector<double> values;
+      for (const CaseResult& c : report.cases)
+        if (c.camera_height == height)
+          if (const MethodResult* m = method_named(c, name))
+            if (const TermResult* t = term_of(*m, term); t && measured(*t))
+              values.push_back(t->metrics.mean_row_deviation);
+      const double median = median_of(values);
+      any = any || std::isfinite(median);
+      data += " " + number(median, "NaN");
+    }
+    data += "\n";
+  }
+  if (!any) return "";
+  const std::string name = "summary_" + term + "_height";
+  std::string script = "set title '" + term +
+                       ": mean |row ratio - 1| against the camera height (median over the cases "
+                       "at each height)'\nset key outside right\nset grid\n"
+                       "set xlabel 'camera height (m)'\nset ylabel 'mean |row ratio - 1|'\n"
+                       "set yrange [0:*]\n";
+  // A log axis needs positive heights; a camera below the sea's rest level keeps it linear.
+  if (heights.front() > 0.0)
+    script += "set logscale x\nset xrange [" + number(heights.front() / 2) + ":" +
+              number(heights.back() * 2) + "]\n";
+  script += "plot ";
+  for (std::size_t i = 0; i < methods.size(); ++i)
+    script += std::string(i ? ", " : "") + "'" + name + ".dat' using 1:" + std::to_string(2 + i) +
+              " with linespoints lw 2 pt 7 lt " + std::to_string(i + 1) + " title '" +
+              methods[i] + "'";
+  script += "\n";
+  return draw(gnuplot, plots, name, data, script, options);
+}
+
 // ---------------------------------------------------------------------------------------------
 // CSV
 
@@ -421,6 +497,7 @@ std::string metrics_csv(const Report& report) {
                               "mean_abs_l",
                               "reference_mean_l",
                               "max_row_deviation",
+                              "mean_row_deviation",
                               "horizon_mean",
                               "horizon_std",
                               "horizon_reference_mean",
@@ -456,6 +533,7 @@ std::string metrics_csv(const Report& report) {
                          number(e.mean_abs.l),
                          number(e.reference_mean.l),
                          number(t.metrics.max_row_deviation),
+                         number(t.metrics.mean_row_deviation),
                          number(h.mean),
                          number(h.std),
                          number(h.reference_mean),
@@ -513,11 +591,82 @@ std::string cases_csv(const Report& report) {
   return csv;
 }
 
+std::string summary_csv(const Report& report) {
+  std::string csv = csv_line({"method", "term", "cases", "median_rel_l1_l", "worst_rel_l1_l",
+                              "median_mean_row_deviation", "worst_mean_row_deviation",
+                              "median_frame_ms"});
+  for (const SummaryLine& s : summarize(report))
+    csv += csv_line({s.method, s.term, std::to_string(s.cases), number(s.median_relative_l1),
+                     number(s.worst_relative_l1), number(s.median_row_deviation),
+                     number(s.worst_row_deviation), number(s.median_frame_ms)});
+  return csv;
+}
+
+std::string claim_csv(const Report& report) {
+  std::string csv = csv_line({"case", "camera_height_m", "term", "full_mean_row_deviation",
+                              "basic_mean_row_deviation", "full_closer"});
+  for (const ClaimLine& l : fig10_claim(report))
+    csv += csv_line({l.case_name, number(l.camera_height), l.term, number(l.full),
+                     number(l.basic), l.holds() ? "1" : "0"});
+  return csv;
+}
+
 // ---------------------------------------------------------------------------------------------
 // index.html
 
+// The summary over the cases (summarize), fig. 10's claim (fig10_claim) and the plots of the
+// mean row deviation against height.
+std::string summary_html(const Report& report,
+                         const std::vector<std::pair<std::string, std::string>>& plots) {
+  const std::vector<SummaryLine> lines = summarize(report);
+  if (lines.empty()) return "";
+  std::string h = "<h2>Over the cases</h2>\n<p>Per method and term, over the " +
+                  std::to_string(report.cases.size()) +
+                  " cases of this report (<a href=\"summary.csv\">summary.csv</a>): the median "
+                  "and the largest relative L1 error of the luminance over the sea, and of the "
+                  "mean |row ratio - 1| (fig. 10's energy per row), and the median frame "
+                  "time.</p>\n<table><tr><th>method</th><th>term</th><th>cases</th><th>rel. L1, "
+                  "median</th><th>rel. L1, largest</th><th>mean |row ratio - 1|, median</th>"
+                  "<th>mean |row ratio - 1|, largest</th><th>frame (ms), median</th></tr>\n";
+  for (const SummaryLine& s : lines)
+    h += "<tr><td class=\"t\">" + html(s.method) + "</td><td class=\"t\">" + html(s.term) +
+         "</td><td>" + std::to_string(s.cases) + "</td><td>" + short_number(s.median_relative_l1) +
+         "</td><td>" + short_number(s.worst_relative_l1) + "</td><td>" +
+         short_number(s.median_row_deviation) + "</td><td>" +
+         short_number(s.worst_row_deviation) + "</td><td>" + short_number(s.median_frame_ms) +
+         "</td></tr>\n";
+  h += "</table>\n";
+  const std::vector<ClaimLine> claim = fig10_claim(report);
+  if (!claim.empty()) {
+    int holds = 0;
+    for (const ClaimLine& l : claim) holds += l.holds() ? 1 : 0;
+    h += "<p>Fig. 10's claim, the full method closer to the reference than the basic one with "
+         "the camera at " +
+         short_number(kClaimMinHeight) +
+         " m or higher, by the mean |row ratio - 1| (<a href=\"claim.csv\">claim.csv</a>): it "
+         "holds in " +
+         std::to_string(holds) + " of " + std::to_string(claim.size()) +
+         " cases and terms.</p>\n<table><tr><th>case</th><th>camera height (m)</th><th>term</th>"
+         "<th>full</th><th>basic</th><th>full closer</th></tr>\n";
+    for (const ClaimLine& l : claim)
+      h += "<tr><td class=\"t\"><a href=\"#" + html(l.case_name) + "\">" + html(l.case_name) +
+           "</a></td><td>" + short_number(l.camera_height) + "</td><td class=\"t\">" +
+           html(l.term) + "</td><td>" + short_number(l.full) + "</td><td>" +
+           short_number(l.basic) + "</td><td" + (l.holds() ? ">yes" : " class=\"fail\">no") +
+           "</td></tr>\n";
+    h += "</table>\n";
+  }
+  h += "<p>";
+  for (const auto& [title, png] : plots)
+    h += "<a href=\"" + html(png) + "\"><img class=\"plot\" src=\"" + html(png) + "\" alt=\"" +
+         html(title) + "\" title=\"" + html(title) + "\"></a>\n";
+  h += "</p>\n";
+  return h;
+}
+
 std::string index_html(const Report& report,
-                       const std::vector<std::vector<std::pair<std::string, std::string>>>& plots) {
+                       const std::vector<std::vector<std::pair<std::string, std::string>>>& plots,
+                       const std::vector<std::pair<std::string, std::string>>& summary_plots) {
   std::string h =
       "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>thalassa "
       "validate: " +
@@ -534,7 +683,7 @@ std::string index_html(const Report& report,
        " samples per pixel" +
        (without_sun > 0 ? " (" + std::to_string(without_sun) + " for the terms without the sun)"
                         : std::string()) +
-       ", doubling from 16 while a row's total changes by 1 % or more; its sun " +
+       ", doubling from 16 while a row's total over the sea changes by 1 % or more; its sun " +
        html(report.reference.sun) + " in cells of at most 1/" +
        short_number(report.reference.sun_cells_per_wavelength) +
        " of the shortest wavelength, at most " + std::to_string(report.reference.sun_cells()) +
@@ -551,7 +700,8 @@ std::string index_html(const Report& report,
          " cases were run (thalassa validate --case).</p>\n";
   h += "<p>Every number: <a href=\"results.json\">results.json</a>, <a "
        "href=\"metrics.csv\">metrics.csv</a>, <a href=\"rows.csv\">rows.csv</a>, <a "
-       "href=\"horizon.csv\">horizon.csv</a>, <a href=\"cases.csv\">cases.csv</a>. Definitions: "
+       "href=\"horizon.csv\">horizon.csv</a>, <a href=\"cases.csv\">cases.csv</a>, <a "
+       "href=\"summary.csv\">summary.csv</a>, <a href=\"claim.csv\">claim.csv</a>. Definitions: "
        "docs/validation.md. Errors are over the pixels that see the sea; the horizon band is 0 "
        "to " +
        short_number(report.horizon.depth_deg) + " degrees below the horizon in bins of " +
@@ -566,6 +716,7 @@ std::string index_html(const Report& report,
          std::to_string(c.exit_status) + "</td><td" + (c.passed() ? ">yes" : " class=\"fail\">no") +
          "</td></tr>\n";
   h += "</table>\n";
+  h += summary_html(report, summary_plots);
   for (std::size_t ci = 0; ci < report.cases.size(); ++ci) {
     const CaseResult& c = report.cases[ci];
     const MethodResult* ref = reference_of(c);
@@ -598,7 +749,7 @@ std::string index_html(const Report& report,
     // Numbers.
     h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>samples</th><th>rel. "
          "L1</th><th>rel. "
-         "RMS</th><th>max |row ratio - 1|</th><th>horizon mean</th><th>horizon std</th>"
+         "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>horizon mean</th><th>horizon std</th>"
          "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
     for (const MethodResult& m : c.methods)
       for (const TermResult& t : m.terms) {
@@ -613,6 +764,7 @@ std::string index_html(const Report& report,
              short_number(t.metrics.error.relative_l1.l) + "</td><td>" +
              short_number(t.metrics.error.relative_rms.l) + "</td><td>" +
              short_number(t.metrics.max_row_deviation) + "</td><td>" +
+             short_number(t.metrics.mean_row_deviation) + "</td><td>" +
              short_number(t.metrics.horizon.mean) + "</td><td>" +
              short_number(t.metrics.horizon.std) + "</td><td>" +
              short_number(t.flicker.value_or(kNaN)) + "</td><td>" +
@@ -660,6 +812,65 @@ std::string index_html(const Report& report,
 bool CaseResult::passed() const {
   if (exit_status != expected_exit) return false;
   return expected_error.empty() || message.find(expected_error) != std::string::npos;
+}
+
+std::vector<SummaryLine> summarize(const Report& report) {
+  struct Values {
+    std::vector<double> l1, rows, ms;
+  };
+  std::vector<std::pair<std::string, std::string>> keys;  // (method, term), first seen first
+  std::vector<Values> values;
+  for (const CaseResult& c : report.cases)
+    for (const MethodResult& m : c.methods) {
+      if (m.method == "reference") continue;
+      for (const TermResult& t : m.terms) {
+        if (!measured(t)) continue;
+        const std::pair<std::string, std::string> key{m.name, t.term};
+        auto found = std::find(keys.begin(), keys.end(), key);
+        if (found == keys.end()) {
+          keys.push_back(key);
+          values.emplace_back();
+          found = keys.end() - 1;
+        }
+        Values& v = values[std::size_t(found - keys.begin())];
+        v.l1.push_back(t.metrics.error.relative_l1.l);
+        v.rows.push_back(t.metrics.mean_row_deviation);
+        v.ms.push_back(t.frame_ms);
+      }
+    }
+  std::vector<SummaryLine> lines;
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const Values& v = values[i];
+    lines.push_back({.method = keys[i].first,
+                     .term = keys[i].second,
+                     .cases = static_cast<int>(v.l1.size()),
+                     .median_relative_l1 = median_of(v.l1),
+                     .worst_relative_l1 = max_of(v.l1),
+                     .median_row_deviation = median_of(v.rows),
+                     .worst_row_deviation = max_of(v.rows),
+                     .median_frame_ms = median_of(v.ms)});
+  }
+  return lines;
+}
+
+std::vector<ClaimLine> fig10_claim(const Report& report) {
+  std::vector<ClaimLine> lines;
+  for (const CaseResult& c : report.cases) {
+    if (!(c.camera_height >= kClaimMinHeight)) continue;
+    const MethodResult* full = method_named(c, "full");
+    const MethodResult* basic = method_named(c, "basic");
+    if (!full || !basic) continue;
+    for (const TermResult& f : full->terms) {
+      const TermResult* b = term_of(*basic, f.term);
+      if (!measured(f) || !b || !measured(*b)) continue;
+      lines.push_back({.case_name = c.name,
+                       .camera_height = c.camera_height,
+                       .term = f.term,
+                       .full = f.metrics.mean_row_deviation,
+                       .basic = b->metrics.mean_row_deviation});
+    }
+  }
+  return lines;
 }
 
 std::string find_gnuplot(const ReportOptions& options) {
@@ -732,6 +943,7 @@ std::string report_json(const Report& report) {
         if (t.flicker) jt["flicker"] = *t.flicker;
         if (t.temporal_error) jt["temporal_error"] = *t.temporal_error;
         jt["max_row_deviation"] = t.metrics.max_row_deviation;
+        jt["mean_row_deviation"] = t.metrics.mean_row_deviation;
         jt["error"] = {{"pixels", e.pixels},
                        {"relative_l1", channels_json(e.relative_l1)},
                        {"relative_rms", channels_json(e.relative_rms)},
@@ -840,6 +1052,10 @@ Report report_from_json(const std::string& json_text) {
                             get_number(jb.at("reference_mean"))});
         t.metrics.row_totals = rows_from(jt.at("rows").at("total"));
         t.metrics.row_ratios = rows_from(jt.at("rows").at("ratio"));
+        // A report written before stop 23 has no mean: it is its rows' (metrics.hpp).
+        t.metrics.mean_row_deviation = jt.contains("mean_row_deviation")
+                                           ? get_number(jt.at("mean_row_deviation"))
+                                           : mean_row_deviation(t.metrics.row_ratios);
         m.terms.push_back(std::move(t));
       }
       c.methods.push_back(std::move(m));
@@ -888,12 +1104,30 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
   } catch (const FileError& e) {
     throw ReportError(e.what());
   }
+  std::vector<std::pair<std::string, std::string>> summary_links;
+  try {
+    std::vector<std::string> terms;
+    for (const CaseResult& c : report.cases)
+      for (const std::string& term : case_terms(c))
+        if (std::find(terms.begin(), terms.end(), term) == terms.end()) terms.push_back(term);
+    for (const std::string& term : terms) {
+      const std::string png = summary_height_plot(gnuplot, plots, report, term, options);
+      if (png.empty()) continue;
+      const std::string stem = png.substr(0, png.size() - 4);
+      for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+      summary_links.push_back({term + ": mean row deviation against height", "plots/" + png});
+    }
+  } catch (const FileError& e) {
+    throw ReportError(e.what());
+  }
   text("results.json", report_json(report));
   text("metrics.csv", metrics_csv(report));
   text("rows.csv", rows_csv(report));
   text("horizon.csv", horizon_csv(report));
   text("cases.csv", cases_csv(report));
-  text("index.html", index_html(report, plot_links));
+  text("summary.csv", summary_csv(report));
+  text("claim.csv", claim_csv(report));
+  text("index.html", index_html(report, plot_links, summary_links));
   return written;
 }
 

@@ -42,8 +42,8 @@ struct RenderStats {
   std::string sky_provider;        // "atmosphere" or "environment_map"
   std::string method = "full";     // the ocean's shading method (ocean/method.hpp)
   // The reference method: samples averaged per pixel, and the largest relative change of an
-  // image row's total luminance between the average of the first samples / 2 and of all of them
-  // (its convergence test); 1 sample and 0 for the other methods.
+  // image row's total luminance of the sea between the average of the first samples / 2 and of
+  // all of them (its convergence test, ReferenceSampling); 1 sample and 0 for the other methods.
   int samples = 1;
   double sample_row_change = 0.0;
   // The reference method with the sun term: how its sun was integrated, "scattered" or
@@ -112,9 +112,10 @@ const char* reference_sun_name(ReferenceSun sun);
 
 // How the reference method samples each pixel: frames drawn at stratified pixel offsets and
 // averaged, doubling from min_samples until doubling changes every image row's total luminance
-// by less than row_tolerance (relative), or max_samples are reached (Bruneton et al. 2010 sec.
-// 7.2's supersampled reference; issue 6, point 1). Rows darker than 1e-3 of the brightest row do
-// not count. The pixel is cut into s x s strata, s = floor(sqrt(min(min_samples, max_samples))),
+// of the sea by less than row_tolerance (relative), or max_samples are reached (Bruneton et al.
+// 2010 sec. 7.2's supersampled reference; issue 6, point 1). A row's sea is its pixels' samples
+// of the sea (their share of each pixel; the sky's samples, the same for every method, do not
+// count). Rows darker than 1e-3 of the brightest row do not count. The pixel is cut into s x s strata, s = floor(sqrt(min(min_samples, max_samples))),
 // each sampled once per round at the Halton (2, 3) point of the round; sample counts are whole
 // rounds (max_samples is rounded down to a multiple of s^2).
 //

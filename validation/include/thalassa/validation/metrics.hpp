@@ -118,6 +118,10 @@ std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
 // The largest |ratio - 1| of the luminance over the rows where it is defined (0 when none is):
 // one number for "each row's total within x% of the reference" (issue 6, point 1).
 double max_row_deviation(const std::vector<ChannelValues>& ratios);
+// The mean |ratio - 1| of the luminance over the rows where it is defined (NaN when none is):
+// fig. 10's comparison of the energy per distance over the whole view, which one row (a few
+// glints of the reference's sea in it) does not decide as it decides max_row_deviation.
+double mean_row_deviation(const std::vector<ChannelValues>& ratios);
 
 // ---------------------------------------------------------------------------------------------
 // Relative errors over the sea.
@@ -195,6 +199,7 @@ struct TermMetrics {
   std::vector<ChannelValues> row_totals;  // over the sea mask, top row first
   std::vector<ChannelValues> row_ratios;  // to the reference's row totals (NaN: undefined)
   double max_row_deviation = 0.0;         // of row_ratios
+  double mean_row_deviation = 0.0;        // of row_ratios (NaN: no row defined)
   ErrorStats error;                       // over the sea mask
   HorizonBand horizon;
 };

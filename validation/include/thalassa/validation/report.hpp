@@ -99,6 +99,37 @@ struct Report {
   int suite_cases = 0;
 };
 
+// Over the cases of a report, one line per method (or variant) and term, in the order of the
+// cases' methods and terms: how the method does across the suite. The reference itself and the
+// variants' own references have no line (they are what is measured against).
+struct SummaryLine {
+  std::string method;  // MethodResult::name
+  std::string term;
+  int cases = 0;  // cases where the term was measured against a reference
+  // Over those cases (NaN where none is defined): the median and the largest relative L1 error
+  // of the luminance over the sea, the median and largest mean |row ratio - 1|
+  // (TermMetrics::mean_row_deviation), and the median frame time (ms).
+  double median_relative_l1 = 0.0, worst_relative_l1 = 0.0;
+  double median_row_deviation = 0.0, worst_row_deviation = 0.0;
+  double median_frame_ms = 0.0;
+};
+std::vector<SummaryLine> summarize(const Report& report);
+
+// Fig. 10's claim (Bruneton et al. 2010; issue 6, point 5): at every distance beyond
+// kClaimMinHeight the full method is closer to the reference than the basic one. Per case with
+// the camera at or above that height and per term: the mean |row ratio - 1| of `full` and of
+// `basic` and whether full's is the smaller. Cases without both methods measured are left out.
+inline constexpr double kClaimMinHeight = 100.0;  // m, the issue's "beyond 100 m"
+struct ClaimLine {
+  std::string case_name;
+  double camera_height = 0.0;  // m
+  std::string term;
+  double full = 0.0, basic = 0.0;  // mean row deviations (NaN: no row defined)
+  // full < basic; false where either is undefined.
+  bool holds() const { return full < basic; }
+};
+std::vector<ClaimLine> fig10_claim(const Report& report);
+
 struct ReportOptions {
   std::string gnuplot;                      // the gnuplot program; empty: "gnuplot" found on PATH
   int plot_width = 800, plot_height = 500;  // pixels of each plot
@@ -114,6 +145,8 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   plots/<case>_<term>_rows.{dat,gp,png}      row totals and ratios (fig. 10)
 //   plots/<case>_error_time.{dat,gp,png}       relative L1 error against frame time
 //   plots/<case>_<term>_horizon.{dat,gp,png}   near-horizon mean and std (paper 004, fig. 5)
+//   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
+//   plots/summary_<term>_height.{dat,gp,png}   mean row deviation against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,
                                       const ReportOptions& options = {});
