@@ -72,10 +72,11 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->check(CLI::IsMember({"full", "basic", "normals", "reference"}))
       ->capture_default_str();
   render
-      ->add_option("--samples", args.samples,
-                   "The reference's most samples per pixel (it doubles them from 16 until each "
-                   "image row's total changes by less than 1%; whole rounds of its s x s pixel "
-                   "strata)")
+      ->add_option(
+          "--samples", args.samples,
+          "The reference's most samples per pixel (it doubles them from 16 until each "
+          "image row's total over the sea changes by less than 1%; whole rounds of its s x s pixel "
+          "strata)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   render

@@ -169,12 +169,20 @@ class CaseRunner {
             m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_row_change);
             lattice_measured = true;
           }
+          // The rows of the sea its sun resolves (a row of sky alone counts as resolved in
+          // RenderStats::resolved_rows, and is never compared).
           const std::vector<double>& rows = rendered.stats.resolved_rows;
-          if (!rows.empty())
-            m.resolved_rows.emplace_back(term,
-                                         int(std::count_if(rows.begin(), rows.end(), [](double f) {
-                                           return f >= validation::kResolvedRowFraction;
-                                         })));
+          if (!rows.empty()) {
+            const validation::PixelMask resolved = validation::resolved_rows_mask(
+                view.sea_mask(), rows, validation::kResolvedRowFraction);
+            int sea_rows = 0;
+            for (int y = 0; y < resolved.height; ++y) {
+              bool any = false;
+              for (int x = 0; x < resolved.width && !any; ++x) any = resolved(x, y);
+              sea_rows += any ? 1 : 0;
+            }
+            m.resolved_rows.emplace_back(term, sea_rows);
+          }
         }
         const auto ref = reference_images.find({job.against, term});
         if (ref != reference_images.end()) {

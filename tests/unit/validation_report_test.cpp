@@ -191,10 +191,9 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   const std::string c = report.cases[0].name;
   // Per term: rows and horizon; per case: error against time. The case that did not render has
   // no plots.
-  const std::vector<std::string> plots = {c + "_sun_rows",    c + "_all_rows",
-                                          c + "_error_time",  c + "_sun_horizon",
-                                          c + "_all_horizon", "summary_sun_height",
-                                          "summary_all_height"};
+  const std::vector<std::string> plots = {
+      c + "_sun_rows",    c + "_all_rows",      c + "_error_time",   c + "_sun_horizon",
+      c + "_all_horizon", "summary_sun_height", "summary_all_height"};
   for (const std::string& p : plots) {
     for (const char* ext : {".dat", ".gp", ".png"}) {
       const std::string rel = "plots/" + p + ext;

@@ -469,8 +469,8 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
   script += "plot ";
   for (std::size_t i = 0; i < methods.size(); ++i)
     script += std::string(i ? ", " : "") + "'" + name + ".dat' using 1:" + std::to_string(2 + i) +
-              " with linespoints lw 2 pt 7 lt " + std::to_string(i + 1) + " title '" +
-              methods[i] + "'";
+              " with linespoints lw 2 pt 7 lt " + std::to_string(i + 1) + " title '" + methods[i] +
+              "'";
   script += "\n";
   return draw(gnuplot, plots, name, data, script, options);
 }
@@ -592,9 +592,9 @@ std::string cases_csv(const Report& report) {
 }
 
 std::string summary_csv(const Report& report) {
-  std::string csv = csv_line({"method", "term", "cases", "median_rel_l1_l", "worst_rel_l1_l",
-                              "median_mean_row_deviation", "worst_mean_row_deviation",
-                              "median_frame_ms"});
+  std::string csv =
+      csv_line({"method", "term", "cases", "median_rel_l1_l", "worst_rel_l1_l",
+                "median_mean_row_deviation", "worst_mean_row_deviation", "median_frame_ms"});
   for (const SummaryLine& s : summarize(report))
     csv += csv_line({s.method, s.term, std::to_string(s.cases), number(s.median_relative_l1),
                      number(s.worst_relative_l1), number(s.median_row_deviation),
@@ -606,8 +606,8 @@ std::string claim_csv(const Report& report) {
   std::string csv = csv_line({"case", "camera_height_m", "term", "full_mean_row_deviation",
                               "basic_mean_row_deviation", "full_closer"});
   for (const ClaimLine& l : fig10_claim(report))
-    csv += csv_line({l.case_name, number(l.camera_height), l.term, number(l.full),
-                     number(l.basic), l.holds() ? "1" : "0"});
+    csv += csv_line({l.case_name, number(l.camera_height), l.term, number(l.full), number(l.basic),
+                     l.holds() ? "1" : "0"});
   return csv;
 }
 
@@ -632,9 +632,8 @@ std::string summary_html(const Report& report,
     h += "<tr><td class=\"t\">" + html(s.method) + "</td><td class=\"t\">" + html(s.term) +
          "</td><td>" + std::to_string(s.cases) + "</td><td>" + short_number(s.median_relative_l1) +
          "</td><td>" + short_number(s.worst_relative_l1) + "</td><td>" +
-         short_number(s.median_row_deviation) + "</td><td>" +
-         short_number(s.worst_row_deviation) + "</td><td>" + short_number(s.median_frame_ms) +
-         "</td></tr>\n";
+         short_number(s.median_row_deviation) + "</td><td>" + short_number(s.worst_row_deviation) +
+         "</td><td>" + short_number(s.median_frame_ms) + "</td></tr>\n";
   h += "</table>\n";
   const std::vector<ClaimLine> claim = fig10_claim(report);
   if (!claim.empty()) {
@@ -651,9 +650,8 @@ std::string summary_html(const Report& report,
     for (const ClaimLine& l : claim)
       h += "<tr><td class=\"t\"><a href=\"#" + html(l.case_name) + "\">" + html(l.case_name) +
            "</a></td><td>" + short_number(l.camera_height) + "</td><td class=\"t\">" +
-           html(l.term) + "</td><td>" + short_number(l.full) + "</td><td>" +
-           short_number(l.basic) + "</td><td" + (l.holds() ? ">yes" : " class=\"fail\">no") +
-           "</td></tr>\n";
+           html(l.term) + "</td><td>" + short_number(l.full) + "</td><td>" + short_number(l.basic) +
+           "</td><td" + (l.holds() ? ">yes" : " class=\"fail\">no") + "</td></tr>\n";
     h += "</table>\n";
   }
   h += "<p>";
@@ -749,7 +747,8 @@ std::string index_html(const Report& report,
     // Numbers.
     h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>samples</th><th>rel. "
          "L1</th><th>rel. "
-         "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>horizon mean</th><th>horizon std</th>"
+         "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>horizon "
+         "mean</th><th>horizon std</th>"
          "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
     for (const MethodResult& m : c.methods)
       for (const TermResult& t : m.terms) {
@@ -791,7 +790,8 @@ std::string index_html(const Report& report,
       }
       if (!r.resolved_rows.empty()) {
         h += "<p>" + html(which) +
-             ": rows where its sun resolves every wave (the only rows compared for that term):";
+             ": image rows of the sea where its sun resolves every wave (the only rows "
+             "compared for that term):";
         for (const auto& [term, rows] : r.resolved_rows)
           h += " " + html(term) + " " + std::to_string(rows) + ";";
         h += "</p>\n";

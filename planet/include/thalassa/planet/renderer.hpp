@@ -115,9 +115,10 @@ const char* reference_sun_name(ReferenceSun sun);
 // of the sea by less than row_tolerance (relative), or max_samples are reached (Bruneton et al.
 // 2010 sec. 7.2's supersampled reference; issue 6, point 1). A row's sea is its pixels' samples
 // of the sea (their share of each pixel; the sky's samples, the same for every method, do not
-// count). Rows darker than 1e-3 of the brightest row do not count. The pixel is cut into s x s strata, s = floor(sqrt(min(min_samples, max_samples))),
-// each sampled once per round at the Halton (2, 3) point of the round; sample counts are whole
-// rounds (max_samples is rounded down to a multiple of s^2).
+// count). Rows darker than 1e-3 of the brightest row do not count. The pixel is cut into s x s
+// strata, s = floor(sqrt(min(min_samples, max_samples))), each sampled once per round at the Halton
+// (2, 3) point of the round; sample counts are whole rounds (max_samples is rounded down to a
+// multiple of s^2).
 //
 // The reflected sun is integrated over cells of the sea (ReferenceSun); sun_cells,
 // sun_cells_per_wavelength and sun_refine size them. Pixels or strata that would need more than

@@ -57,9 +57,10 @@ struct MethodResult {
   // change of a row's total sun from a lattice of half the cells
   // (RenderStats::sun_lattice_row_change), the sun's own convergence test.
   std::vector<std::pair<std::string, double>> lattice_convergence;
-  // The reference only, per term with the sun: the image rows where its sun resolved every wave
-  // (RenderStats::resolved_rows >= kResolvedRowFraction); the other methods are compared with it
-  // on those rows only, for that term.
+  // The reference only, per term with the sun: the image rows of the sea (rows with a pixel of
+  // the sea mask) where its sun resolved every wave (RenderStats::resolved_rows >=
+  // kResolvedRowFraction); the other methods are compared with it on those rows only, for that
+  // term. Before stop 23 the rows of sky alone were counted too.
   std::vector<std::pair<std::string, int>> resolved_rows;
 };
 
