@@ -128,6 +128,15 @@ TEST(ValidationMetrics, RowTotalsAreSumsOverTheMask) {
   mask.inside[1] = 0;  // (1, 0) left out
   EXPECT_DOUBLE_EQ(row_totals(image, &mask)[0].g, 5.0);
   EXPECT_DOUBLE_EQ(row_totals(image)[0].b, 7.0);  // no mask: every pixel
+  // A row with no pixel in the mask has no total (not a black row: nothing was compared there).
+  mask.inside[3] = mask.inside[4] = mask.inside[5] = 0;
+  EXPECT_TRUE(std::isnan(row_totals(image, &mask)[1].l));
+  EXPECT_TRUE(std::isnan(row_totals(image, &mask)[1].b));
+  EXPECT_DOUBLE_EQ(row_totals(image, &mask)[0].l, 5.0);
+  set_grey(image, 1, 1, 0.0);
+  set_grey(image, 0, 1, 0.0);
+  mask.inside[4] = 1;
+  EXPECT_EQ(row_totals(image, &mask)[1].l, 0.0);  // a black row inside the mask is 0
   const PixelMask wrong = PixelMask::all(2, 3);
   EXPECT_THROW(row_totals(image, &wrong), std::invalid_argument);
   EXPECT_THROW(relative_errors(image, random_image(3, 3, 1), mask), std::invalid_argument);

@@ -440,16 +440,23 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
       << heights;
 }
 
-// No row defined anywhere (the reference's sun resolved none): gnuplot refuses a plot of no
-// point, so there is no summary plot, and the report is still written.
-TEST_F(ValidationReport, NoDefinedRowDeviationDrawsNoSummaryPlot) {
+// No row compared anywhere (the reference's sun resolved none): gnuplot refuses a plot of no
+// point, so the row plot says so, there is no summary plot, and the report is still written.
+TEST_F(ValidationReport, NoRowComparedDrawsALabelAndNoSummaryPlot) {
   Report report = synthetic_report();
   for (MethodResult& m : report.cases[0].methods)
-    for (TermResult& t : m.terms) t.metrics.mean_row_deviation = NAN;
+    for (TermResult& t : m.terms) {
+      t.metrics.mean_row_deviation = NAN;
+      for (ChannelValues& v : t.metrics.row_totals) v = {NAN, NAN, NAN, NAN};
+      for (ChannelValues& v : t.metrics.row_ratios) v = {NAN, NAN, NAN, NAN};
+    }
   const std::vector<std::string> written = write_report(report, dir_.string());
   EXPECT_TRUE(fs::is_regular_file(dir_ / "index.html"));
   EXPECT_FALSE(fs::exists(dir_ / "plots" / "summary_sun_height.png"));
-  EXPECT_TRUE(fs::is_regular_file(dir_ / "plots" / (report.cases[0].name + "_sun_rows.png")));
+  const std::string c = report.cases[0].name;
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "plots" / (c + "_sun_rows.png")));
+  EXPECT_NE(read_text(dir_ / "plots" / (c + "_sun_rows.gp")).find("no row compared"),
+            std::string::npos);
 }
 
 TEST_F(ValidationReport, MissingGnuplotIsARunTimeErrorBeforeAnyFileIsWritten) {

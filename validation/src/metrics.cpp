@@ -126,11 +126,13 @@ std::vector<ChannelValues> row_totals(const Image& image, const PixelMask* mask)
   std::vector<ChannelValues> rows(image.height);
   for (int y = 0; y < image.height; ++y) {
     ChannelValues sum;
+    int pixels = 0;
     for (int x = 0; x < image.width; ++x) {
       if (mask && !(*mask)(x, y)) continue;
       sum = each(std::plus<>(), sum, values_of(image.pixel(x, y)));
+      ++pixels;
     }
-    rows[y] = sum;
+    rows[y] = pixels > 0 ? sum : ChannelValues{kNaN, kNaN, kNaN, kNaN};
   }
   return rows;
 }

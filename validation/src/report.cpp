@@ -254,14 +254,26 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
                        "set xrange [-0.5:" +
                        number(static_cast<double>(rows) - 0.5) +
                        "]\n"
-                       "set ylabel \"row total luminance\\n(W m^-2 sr^-1 nm^-1)\"\nplot ";
-  // Each method keeps its colour (line type i + 1) in both panels: the ratio panel's line of 1
-  // would otherwise take the first colour and shift the others by one.
-  for (std::size_t i = 0; i < curves.size(); ++i)
-    script += std::string(i ? ", " : "") + "'" + name +
-              ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 lt " +
-              std::to_string(i + 1) + " title '" + curves[i].first + "'";
-  script += "\n";
+                       "set ylabel \"row total luminance\\n(W m^-2 sr^-1 nm^-1)\"\n";
+  // No row compared at all (the reference's sun resolved none): gnuplot refuses a plot whose
+  // every point is undefined, so the panel says so.
+  bool any_total = false;
+  for (const auto& [name_, t] : curves)
+    for (const ChannelValues& total : t->metrics.row_totals) any_total |= std::isfinite(total.l);
+  if (any_total) {
+    // Each method keeps its colour (line type i + 1) in both panels: the ratio panel's line of
+    // 1 would otherwise take the first colour and shift the others by one.
+    script += "plot ";
+    for (std::size_t i = 0; i < curves.size(); ++i)
+      script += std::string(i ? ", " : "") + "'" + name +
+                ".dat' using 1:" + std::to_string(2 + 2 * i) + " with lines lw 2 lt " +
+                std::to_string(i + 1) + " title '" + curves[i].first + "'";
+    script += "\n";
+  } else {
+    script +=
+        "set label 1 'no row compared (no row of the sea resolved by the reference)' at graph "
+        "0.5, graph 0.5 center\nplot 0 with lines dt 2 lc 'grey' notitle\nunset label 1\n";
+  }
   // No defined ratio at all (the reference's sun resolved no row, or the term is black): gnuplot
   // refuses a plot whose every point is undefined, so the panel says so over the line of 1.
   bool any_ratio = false;

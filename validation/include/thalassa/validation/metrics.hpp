@@ -102,7 +102,8 @@ class ViewGeometry {
 // Per-row radiance (paper 000, fig. 10, right column).
 
 // Each row's sum of the pixels inside `mask` (every pixel when null), top row first,
-// W m^-2 sr^-1 nm^-1 summed over pixels.
+// W m^-2 sr^-1 nm^-1 summed over pixels; NaN (undefined) for a row with no pixel inside the
+// mask (a row of sky, or one the reference's sun does not resolve), which is not a black row.
 std::vector<ChannelValues> row_totals(const Image& image, const PixelMask* mask = nullptr);
 // A row's ratio is defined only where the reference's row total (luminance) is at least this
 // fraction of its brightest row's. The sun's term lights rows far from the glint by next to
@@ -196,7 +197,7 @@ double temporal_error(std::span<const Image> method, std::span<const Image> refe
 // gives ratios of 1 and zero errors).
 
 struct TermMetrics {
-  std::vector<ChannelValues> row_totals;  // over the sea mask, top row first
+  std::vector<ChannelValues> row_totals;  // over the compared pixels, top row first (NaN: none)
   std::vector<ChannelValues> row_ratios;  // to the reference's row totals (NaN: undefined)
   double max_row_deviation = 0.0;         // of row_ratios
   double mean_row_deviation = 0.0;        // of row_ratios (NaN: no row defined)
