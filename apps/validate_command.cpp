@@ -77,6 +77,7 @@ class CaseRunner {
     result.camera_height = scene.camera.height;
     try {
       render_case(c, scene, result);
+      time_methods(c, result);
     } catch (const SceneError& error) {
       result.exit_status = kExitInvalidInput;
       result.message = error.what();
@@ -87,7 +88,49 @@ class CaseRunner {
     return result;
   }
 
+  // A case kept from an earlier report (--resume) whose methods were timed at other settings
+  // than the suite's: times them again, without rendering its images.
+  void retime(const SuiteCase& c, CaseResult& result) {
+    try {
+      time_methods(c, result);
+    } catch (const std::exception& error) {
+      result.exit_status = kExitRuntimeFailure;
+      result.message = std::string("timing: ") + error.what();
+    }
+  }
+
  private:
+  // Each method of the case other than the references, timed apart (Suite::timing): its scene
+  // at the timing size with every light term, `frames` frames, the median frame time.
+  void time_methods(const SuiteCase& c, CaseResult& result) {
+    if (!suite_.timing.enabled()) return;
+    LightTerms every;
+    parse_terms(validation::terms_option("all"), every);
+    for (MethodResult& m : result.methods) {
+      if (m.method == "reference") continue;
+      const SuiteMethod* method = suite_.find_method(m.name);
+      if (!method) continue;
+      Scene scene = validation::case_scene(suite_, c, method);
+      scene.image.width = suite_.timing.width;
+      scene.image.height = suite_.timing.height;
+      RendererOptions options;
+      options.method = *ocean::parse_method(method->method);
+      options.terms = every;
+      const auto start = std::chrono::steady_clock::now();
+      Renderer renderer(context_, scene, options);
+      for (int k = 0; k < suite_.timing.frames; ++k) renderer.render();
+      m.timing_ms = renderer.stats().frame_ms;
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      char detail[160];
+      std::snprintf(detail, sizeof detail, "%s, timed at %dx%d: %.1f ms (median of %d frames)",
+                    m.name.c_str(), scene.image.width, scene.image.height, *m.timing_ms,
+                    suite_.timing.frames);
+      bar_.done(c.name, detail, seconds);
+    }
+    result.timing = suite_.timing;
+  }
+
   void render_case(const SuiteCase& c, const Scene& base_scene, CaseResult& result) {
     const validation::ViewGeometry view(base_scene);
     const SuiteMethod* reference = suite_.reference_method();
@@ -260,6 +303,13 @@ class CaseRunner {
 // one frame or the flicker frames; one (skipped) step for a case expected to be refused.
 int render_count(const Suite& suite, const SuiteCase& c) {
   if (c.expected_exit != 0) return 1;
+  // Each method other than the reference timed apart (Suite::timing).
+  const auto timed = [&] {
+    int n = 0;
+    if (suite.timing.enabled())
+      for (const std::string& name : c.methods) n += suite.find_method(name)->method != "reference";
+    return n;
+  };
   const bool has_reference = renders_reference(suite, c);
   std::size_t renders = c.methods.size();
   for (const std::string& name : c.methods)
@@ -272,7 +322,16 @@ int render_count(const Suite& suite, const SuiteCase& c) {
                                        term) != suite.flicker.terms.end();
       count += over_time ? suite.flicker.frames : 1;
     }
-  return count;
+  return count + timed();
+}
+
+// Whether a case kept from an earlier report must be timed again (Suite::timing changed, or
+// it was not timed): the count of its timing renders, 0 when not.
+int retime_count(const Suite& suite, const CaseResult& kept) {
+  if (!suite.timing.enabled() || kept.methods.empty() || kept.timing == suite.timing) return 0;
+  int n = 0;
+  for (const MethodResult& m : kept.methods) n += m.method != "reference";
+  return n;
 }
 
 // Whether every image a case's report names is in `dir` (a resumed run keeps it only then).
@@ -419,6 +478,7 @@ int run_validate(const ValidateArgs& args) {
   report.renderer = query_gl_info().renderer;
   report.version = THALASSA_VERSION_STRING;
   report.horizon = suite.horizon;
+  report.timing = suite.timing;
   report.reference = suite.reference;
   report.suite_cases = static_cast<int>(suite.cases.size());
   const std::string environment =
@@ -434,17 +494,27 @@ int run_validate(const ValidateArgs& args) {
     const bool keep = found != earlier.end() && found->second.fingerprint == fingerprints.back() &&
                       images_present(found->second, args.dir);
     kept.push_back(keep ? &found->second : nullptr);
-    if (selected[i]) steps += keep ? 1 : render_count(suite, c);
+    if (selected[i])
+      steps += keep ? 1 + retime_count(suite, found->second) : render_count(suite, c);
   }
   ProgressBar bar(steps, "renders");
   CaseRunner runner(suite, *context, args.dir, bar);
   int failed = 0, run = 0;
   for (std::size_t i = 0; i < suite.cases.size(); ++i) {
     const SuiteCase& c = suite.cases[i];
+    bool retimed = false;
     if (kept[i]) {
-      // Kept (selected or not): a resumed report holds every case it has finished.
+      // Kept (selected or not): a resumed report holds every case it has finished. A selected
+      // one timed at other settings than the suite's is timed again (its images are kept).
       report.cases.push_back(*kept[i]);
-      if (selected[i]) bar.skipped(c.name, "kept from the earlier run (--resume)");
+      if (selected[i]) {
+        bar.skipped(c.name, "kept from the earlier run (--resume)");
+        if (retime_count(suite, *kept[i]) > 0) {
+          runner.retime(c, report.cases.back());
+          retimed = true;
+          ++run;
+        }
+      }
     } else if (selected[i]) {
       report.cases.push_back(runner.run(c));
       report.cases.back().fingerprint = fingerprints[i];
@@ -459,7 +529,7 @@ int run_validate(const ValidateArgs& args) {
           ", got " + std::to_string(report.cases.back().exit_status) +
           (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message + ")"));
     }
-    if (kept[i]) continue;
+    if (kept[i] && !retimed) continue;
     // 3. The report, so far.
     try {
       validation::write_report(report, args.dir);

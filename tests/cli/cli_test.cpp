@@ -494,6 +494,61 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
   EXPECT_FALSE(fs::exists(dir_ / "junk" / "index.html"));
 }
 
+// A suite's timing: each method other than the references is timed apart at its size (the
+// report's timing_ms; the error plot uses it), and a resumed run whose timing changed times the
+// kept cases again without rendering their images.
+TEST_F(Cli, ValidateTimesTheMethodsApartAndRetimesAResumedCase) {
+  const auto suite = [](const std::string& timing) {
+    return R"({"suite": "timed", "base": {"image.width": 16, "image.height": 8,
+      "camera.pitch": -20}, "methods": ["reference", "full",
+      {"name": "full_cell4", "method": "full", "set": {"ocean.grid_cell": 4}}],
+      "terms": ["sky"], "flicker": {"frames": 1, "terms": ["sky"]},
+      "reference": {"pixel_samples": 4}, "timing": )" +
+           timing + R"(, "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}}]})";
+  };
+  write("t.json", suite(R"({"width": 48, "height": 32, "frames": 2})"));
+  const Result r = run("validate t.json -o out");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("full, timed at 48x32"), std::string::npos) << r.err;
+  const auto read_results = [&] {
+    std::ifstream in(dir_ / "out" / "results.json");
+    return nlohmann::json::parse(in);
+  };
+  const auto first = read_results();
+  EXPECT_EQ(first["timing"]["width"], 48);
+  const auto& c = first["cases"][0];
+  EXPECT_EQ(c["timing"]["height"], 32);
+  EXPECT_FALSE(c["methods"][0].contains("timing_ms"));  // the reference
+  for (int m : {1, 2}) {
+    ASSERT_TRUE(c["methods"][m].contains("timing_ms")) << m;
+    EXPECT_GT(c["methods"][m]["timing_ms"].get<double>(), 0.0) << m;
+  }
+  // The error plot's times are the timed frames.
+  std::ifstream dat(dir_ / "out" / "plots" / "a_error_time.dat");
+  const std::string data{std::istreambuf_iterator<char>(dat), std::istreambuf_iterator<char>()};
+  char line[128];
+  std::snprintf(line, sizeof line, "\nfull %.17g ", c["methods"][1]["timing_ms"].get<double>());
+  EXPECT_NE(data.find(line), std::string::npos) << data;
+
+  // Another timing: the case is kept, its images untouched, its methods timed again.
+  const auto image = dir_ / "out" / "images" / "a_reference_sky.exr";
+  const auto image_time = fs::last_write_time(image);
+  write("t.json", suite(R"({"width": 40, "height": 24, "frames": 1})"));
+  const Result again = run("validate t.json -o out --resume");
+  ASSERT_EQ(again.status, 0) << again.err;
+  EXPECT_NE(again.err.find("kept from the earlier run"), std::string::npos) << again.err;
+  EXPECT_NE(again.err.find("full_cell4, timed at 40x24"), std::string::npos) << again.err;
+  EXPECT_EQ(fs::last_write_time(image), image_time);
+  const auto retimed = read_results();
+  EXPECT_EQ(retimed["cases"][0]["fingerprint"], c["fingerprint"]);
+  EXPECT_EQ(retimed["cases"][0]["timing"]["width"], 40);
+  EXPECT_EQ(retimed["cases"][0]["methods"][1]["terms"], c["methods"][1]["terms"]);
+  // The same timing once more: nothing is timed.
+  const Result kept = run("validate t.json -o out --resume");
+  ASSERT_EQ(kept.status, 0) << kept.err;
+  EXPECT_EQ(kept.err.find("timed at"), std::string::npos) << kept.err;
+}
+
 // ---- thalassa sky ----
 
 // The centre of texel (i, j) of an n x n sky map in u units (column 0 west, row 0 north).

@@ -124,6 +124,8 @@ Report synthetic_report() {
   c.description = "10 m/s, 100 m, low sun, with a comma";
   c.set = {{"ocean.wind_speed", "10"}, {"camera.height", "100"}, {"ocean.spectrum", "\"omega-2\""}};
   c.camera_height = 100.0;
+  c.timing = {1280, 720, 5};
+  report.timing = c.timing;
   const struct {
     const char* name;
     const char* method;
@@ -150,6 +152,7 @@ Report synthetic_report() {
       }
       r.terms.push_back(std::move(t));
     }
+    if (r.method != "reference") r.timing_ms = m.ms * 7.0 / 3.0;  // timed apart
     if (r.method == "reference") {
       r.convergence = {{"sun", 0.004}, {"all", 0.0071}};
       r.lattice_convergence = {{"sun", 0.018}, {"all", 0.0175}};
@@ -267,6 +270,12 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     const TermResult& t = *terms.at({f[col["method"]], f[col["term"]]});
     const std::string what = f[col["method"]] + "/" + f[col["term"]];
     expect_same(csv_number(f[col["frame_ms"]]), t.frame_ms, what + " frame_ms");
+    const MethodResult* method = nullptr;
+    for (const MethodResult& m : c.methods)
+      if (m.name == f[col["method"]]) method = &m;
+    ASSERT_NE(method, nullptr);
+    expect_same(csv_number(f[col["timing_ms"]]), method->timing_ms.value_or(NAN),
+                what + " timing_ms");
     EXPECT_EQ(f[col["samples"]], std::to_string(t.samples)) << what;
     expect_same(csv_number(f[col["rel_l1_l"]]), t.metrics.error.relative_l1.l, what + " l1");
     expect_same(csv_number(f[col["rel_l1_b"]]), t.metrics.error.relative_l1.b, what + " l1 b");
@@ -318,6 +327,8 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   EXPECT_EQ(back.reference.sun, report.reference.sun);
   EXPECT_EQ(back.reference.sun_refine, report.reference.sun_refine);
+  EXPECT_EQ(back.timing, report.timing);
+  EXPECT_EQ(back.cases[0].timing, c.timing);
   ASSERT_EQ(back.cases.size(), 2u);
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());
@@ -333,6 +344,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     EXPECT_EQ(a.plain, b.plain);
     EXPECT_EQ(a.convergence, b.convergence);
     EXPECT_EQ(a.lattice_convergence, b.lattice_convergence);
+    EXPECT_EQ(a.timing_ms, b.timing_ms);
     ASSERT_EQ(a.terms.size(), b.terms.size());
     for (std::size_t ti = 0; ti < a.terms.size(); ++ti) {
       const TermResult &x = a.terms[ti], &w = b.terms[ti];

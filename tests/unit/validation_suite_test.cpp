@@ -54,6 +54,10 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   }
   EXPECT_EQ(suite.terms, (std::vector<std::string>{"sun", "sky", "sea", "all"}));
   EXPECT_GE(suite.flicker.frames, 2);
+  // The methods are timed apart at a screen's size (at the images' 128x72 a frame is fixed
+  // overhead on any renderer).
+  EXPECT_TRUE(suite.timing.enabled());
+  EXPECT_GE(suite.timing.width * suite.timing.height, 1280 * 720);
   // The sun scattered once per image costs its samples no more than the sky's: every term's
   // reference may double to 1,024 samples, which the sky needs to converge within 1 %
   // (docs/validation.md: 0.84 % from 512 to 1,024).
@@ -282,6 +286,10 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
   const Suite other_method = suite(R"({"pixel_samples": 8})", R"({"ocean.waves": 120})",
                                    R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(other_method, other_method.cases[0], env), a);
+  // Unchanged by the timing, which a resumed run measures again on its own (TimingSettings).
+  Suite timed = base;
+  timed.timing = {640, 360, 3};
+  EXPECT_EQ(case_fingerprint(timed, timed.cases[0], env), a);
 }
 
 TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
@@ -299,7 +307,7 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: suite: expected a name of a-z, 0-9 and _, got \"Bad Name\""},
       {R"({"suite": "s", "frobs": 1, "cases": [)" + ok_case + "]}",
        "t.json: frobs: expected a known key (suite, description, scene, base, methods, terms, "
-       "flicker, reference, horizon, cases; see docs/validation.md), got an unknown key"},
+       "flicker, timing, reference, horizon, cases; see docs/validation.md), got an unknown key"},
       {R"({"suite": "s", "suite": "t", "cases": [)" + ok_case + "]}",
        "t.json: suite: expected each key once, got \"suite\" a second time"},
       {R"({"suite": "s"})", "t.json: cases: expected an array of cases, got none"},
@@ -394,6 +402,19 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: flicker.terms[0]: expected one of the suite's terms, got \"all\""},
       {R"({"suite": "s", "flicker": {"frames": 2, "dt": 0}, "cases": [)" + ok_case + "]}",
        "t.json: flicker.dt: expected a number in (0, 3600] (s), got 0"},
+      {R"({"suite": "s", "timing": {"width": 640}, "cases": [)" + ok_case + "]}",
+       "t.json: timing.height: expected the timed frames' size in pixels, got none"},
+      {R"({"suite": "s", "timing": {"width": 0, "height": 480}, "cases": [)" + ok_case + "]}",
+       "t.json: timing.width: expected an integer in [1, 8192], got 0"},
+      {R"({"suite": "s", "timing": {"width": 64, "height": 48, "frames": 0}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: timing.frames: expected an integer in [1, 100], got 0"},
+      {R"({"suite": "s", "timing": {"width": 64, "height": 48, "repeat": 3}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: timing.repeat: expected a known key (width, height, frames; see "
+       "docs/validation.md), got an unknown key"},
+      {R"({"suite": "s", "timing": [640, 480], "cases": [)" + ok_case + "]}",
+       "t.json: timing: expected an object {\"width\", \"height\", \"frames\"}, got an array..."},
       {R"({"suite": "s", "reference": {"pixel_samples": 0.5}, "cases": [)" + ok_case + "]}",
        "t.json: reference.pixel_samples: expected an integer in [1, 4096], got 0.5"},
       {R"({"suite": "s", "reference": {"pixel_samples_without_sun": 8192}, "cases": [)" + ok_case +

@@ -220,6 +220,18 @@ std::string draw(const std::string& gnuplot, const fs::path& plots, const std::s
 // Whether the term was measured against a reference (compare_images ran on it).
 bool measured(const TermResult& t) { return !t.metrics.row_totals.empty(); }
 
+// What a method's term costs, ms: the method's frame timed apart (TimingSettings), else the
+// term's image's own frame time.
+double cost_ms(const MethodResult& m, const TermResult& t) {
+  return m.timing_ms.value_or(t.frame_ms);
+}
+
+// "1280x720" or the case's images' size when the methods were not timed apart.
+std::string timing_text(const TimingSettings& timing) {
+  return timing.enabled() ? std::to_string(timing.width) + "x" + std::to_string(timing.height)
+                          : std::string("the image size");
+}
+
 // Fig. 10's right column: each plain method's row totals (luminance over the sea) and their
 // ratio to the reference's, row 0 at the top of the image.
 std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
@@ -300,8 +312,9 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   return draw(gnuplot, plots, name, data, script, options);
 }
 
-// Every method and variant: its relative L1 error over the sea against its frame time, one
-// series per term; the reference's time as a dashed line per term.
+// Every method and variant: its relative L1 error over the sea against its frame time (timed
+// apart at the case's TimingSettings when it has them, every term in one frame), one series per
+// term; the reference's time (at the images' size) as a dashed line per term.
 std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
                             const ReportOptions& options) {
   const std::vector<std::string> terms = case_terms(c);
@@ -318,7 +331,7 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
     data += m.name;
     for (const std::string& term : terms) {
       const TermResult* t = term_of(m, term);
-      data += " " + number(t ? t->frame_ms : kNaN, "NaN") + " " +
+      data += " " + number(t ? cost_ms(m, *t) : kNaN, "NaN") + " " +
               number(t ? t->metrics.error.relative_l1.l : kNaN, "NaN");
     }
     data += "\n";
@@ -327,15 +340,20 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
   std::string script = "set title '" + c.name +
                        ": relative L1 error of the luminance over the sea against frame time'\n"
                        "set key outside right\nset grid\nset logscale x\n"
-                       "set xlabel 'frame time (ms)'\nset ylabel 'relative L1 error'\n"
+                       // (No apostrophe inside: the label is a single-quoted gnuplot string.)
+                       "set xlabel 'frame time (ms)" +
+                       (c.timing.enabled() ? ", every term at " + timing_text(c.timing) +
+                                                 "; the reference at the image size"
+                                           : std::string()) +
+                       "'\nset ylabel 'relative L1 error'\n"
                        "set yrange [0:*]\n";
   // The x range covers every time, the reference's included (arrows do not widen it).
   double lo = HUGE_VAL, hi = 0.0;
   for (const MethodResult& m : c.methods)
     for (const TermResult& t : m.terms)
-      if (t.frame_ms > 0.0 && std::isfinite(t.frame_ms)) {
-        lo = std::min(lo, t.frame_ms);
-        hi = std::max(hi, t.frame_ms);
+      if (const double ms = cost_ms(m, t); ms > 0.0 && std::isfinite(ms)) {
+        lo = std::min(lo, ms);
+        hi = std::max(hi, ms);
       }
   if (hi > 0.0) script += "set xrange [" + number(lo / 1.5) + ":" + number(hi * 1.5) + "]\n";
   if (const MethodResult* ref = reference_of(c)) {
@@ -496,6 +514,7 @@ std::string metrics_csv(const Report& report) {
                               "kind",
                               "term",
                               "frame_ms",
+                              "timing_ms",
                               "samples",
                               "sea_pixels",
                               "rel_l1_l",
@@ -532,6 +551,7 @@ std::string metrics_csv(const Report& report) {
                          m.method,
                          t.term,
                          number(t.frame_ms),
+                         number(m.timing_ms.value_or(kNaN)),
                          std::to_string(t.samples),
                          std::to_string(e.pixels),
                          number(e.relative_l1.l),
@@ -637,7 +657,8 @@ std::string summary_html(const Report& report,
                   " cases of this report (<a href=\"summary.csv\">summary.csv</a>): the median "
                   "and the largest relative L1 error of the luminance over the sea, and of the "
                   "mean |row ratio - 1| (fig. 10's energy per row), and the median frame "
-                  "time.</p>\n<table><tr><th>method</th><th>term</th><th>cases</th><th>rel. L1, "
+                  "time (timed apart where the cases "
+                  "were).</p>\n<table><tr><th>method</th><th>term</th><th>cases</th><th>rel. L1, "
                   "median</th><th>rel. L1, largest</th><th>mean |row ratio - 1|, median</th>"
                   "<th>mean |row ratio - 1|, largest</th><th>frame (ms), median</th></tr>\n";
   for (const SummaryLine& s : lines)
@@ -688,6 +709,14 @@ std::string index_html(const Report& report,
   h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
   h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
        "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+  h += "<p>Frame times: " +
+       (report.timing.enabled()
+            ? "each method other than the reference timed apart at " + timing_text(report.timing) +
+                  " with every term, the median of " + std::to_string(report.timing.frames) +
+                  " frames (the error against time plots use it); the reference's at the "
+                  "images' size"
+            : std::string("the images' own (the suite times nothing apart)")) +
+       ".</p>\n";
   const int without_sun = report.reference.pixel_samples_without_sun;
   h += "<p>Reference: up to " + std::to_string(report.reference.pixel_samples) +
        " samples per pixel" +
@@ -757,7 +786,9 @@ std::string index_html(const Report& report,
     }
     h += "</table>\n";
     // Numbers.
-    h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>samples</th><th>rel. "
+    h += "<table><tr><th>method</th><th>term</th><th>frame (ms)</th><th>timed frame (ms), " +
+         html(timing_text(c.timing)) +
+         "</th><th>samples</th><th>rel. "
          "L1</th><th>rel. "
          "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>horizon "
          "mean</th><th>horizon std</th>"
@@ -771,6 +802,7 @@ std::string index_html(const Report& report,
                                      : m.name;
         h += "<tr><td class=\"t\">" + html(name) + "</td><td class=\"t\">" + html(t.term) +
              "</td><td>" + short_number(t.frame_ms) + "</td><td>" +
+             short_number(m.timing_ms.value_or(kNaN)) + "</td><td>" +
              (t.samples > 0 ? std::to_string(t.samples) : std::string("-")) + "</td><td>" +
              short_number(t.metrics.error.relative_l1.l) + "</td><td>" +
              short_number(t.metrics.error.relative_rms.l) + "</td><td>" +
@@ -847,7 +879,7 @@ std::vector<SummaryLine> summarize(const Report& report) {
         Values& v = values[std::size_t(found - keys.begin())];
         v.l1.push_back(t.metrics.error.relative_l1.l);
         v.rows.push_back(t.metrics.mean_row_deviation);
-        v.ms.push_back(t.frame_ms);
+        v.ms.push_back(cost_ms(m, t));
       }
     }
   std::vector<SummaryLine> lines;
@@ -904,6 +936,9 @@ std::string report_json(const Report& report) {
   j["backend"] = report.backend;
   j["renderer"] = report.renderer;
   j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
+  j["timing"] = {{"width", report.timing.width},
+                 {"height", report.timing.height},
+                 {"frames", report.timing.frames}};
   j["reference"] = {{"pixel_samples", report.reference.pixel_samples},
                     {"pixel_samples_without_sun", report.reference.pixel_samples_without_sun},
                     {"sun_normal_samples", report.reference.sun_normal_samples},
@@ -926,6 +961,9 @@ std::string report_json(const Report& report) {
     jc["passed"] = c.passed();
     jc["camera_height"] = c.camera_height;
     if (!c.fingerprint.empty()) jc["fingerprint"] = c.fingerprint;
+    if (c.timing.enabled())
+      jc["timing"] = {
+          {"width", c.timing.width}, {"height", c.timing.height}, {"frames", c.timing.frames}};
     jc["methods"] = ojson::array();
     for (const MethodResult& m : c.methods) {
       ojson jm;
@@ -933,6 +971,7 @@ std::string report_json(const Report& report) {
       jm["method"] = m.method;
       jm["plain"] = m.plain;
       jm["reference"] = m.reference;
+      if (m.timing_ms) jm["timing_ms"] = *m.timing_ms;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
       if (!m.lattice_convergence.empty()) {
@@ -1000,6 +1039,11 @@ Report report_from_json(const std::string& json_text) {
   report.horizon = {get_number(j.at("horizon").at("depth_deg")),
                     get_number(j.at("horizon").at("bin_deg"))};
   report.suite_cases = j.value("suite_cases", 0);
+  const auto timing_from = [](const ojson& t) {
+    return TimingSettings{t.at("width").get<int>(), t.at("height").get<int>(),
+                          t.at("frames").get<int>()};
+  };
+  if (j.contains("timing")) report.timing = timing_from(j.at("timing"));
   if (j.contains("reference")) {
     const ojson& jr = j.at("reference");
     report.reference.pixel_samples = jr.at("pixel_samples");
@@ -1021,12 +1065,14 @@ Report report_from_json(const std::string& json_text) {
     c.message = jc.at("message");
     c.camera_height = get_number(jc.at("camera_height"));
     c.fingerprint = jc.value("fingerprint", std::string());
+    if (jc.contains("timing")) c.timing = timing_from(jc.at("timing"));
     for (const ojson& jm : jc.at("methods")) {
       MethodResult m;
       m.name = jm.at("name");
       m.method = jm.at("method");
       m.plain = jm.at("plain");
       m.reference = jm.value("reference", std::string());
+      m.timing_ms = optional_from(jm, "timing_ms");
       for (const auto& [term, change] : jm.at("convergence").items())
         m.convergence.push_back({term, get_number(change)});
       if (jm.contains("lattice_convergence"))

@@ -263,9 +263,9 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
   const json doc = parse_strict(json_text, source);
   if (!doc.is_object())
     fail(source, "", "a JSON object (a suite, see docs/validation.md)", describe(doc));
-  static constexpr std::string_view kKeys[] = {"suite",   "description", "scene",   "base",
-                                               "methods", "terms",       "flicker", "reference",
-                                               "horizon", "cases"};
+  static constexpr std::string_view kKeys[] = {"suite",     "description", "scene",   "base",
+                                               "methods",   "terms",       "flicker", "timing",
+                                               "reference", "horizon",     "cases"};
   only_known(doc, kKeys, source, "");
   if (!doc.contains("suite")) fail(source, "suite", "the suite's name (a-z, 0-9 and _)", "none");
   suite.name = name_at(doc["suite"], source, "suite");
@@ -340,6 +340,21 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     if (std::find(suite.terms.begin(), suite.terms.end(), t) == suite.terms.end())
       fail(source, "flicker.terms[" + std::to_string(i) + "]", "one of the suite's terms",
            "\"" + t + "\"");
+  }
+
+  if (doc.contains("timing")) {
+    const json& t = doc["timing"];
+    if (!t.is_object())
+      fail(source, "timing", "an object {\"width\", \"height\", \"frames\"}", describe(t));
+    static constexpr std::string_view kTimingKeys[] = {"width", "height", "frames"};
+    only_known(t, kTimingKeys, source, "timing.");
+    for (const char* key : {"width", "height"})
+      if (!t.contains(key))
+        fail(source, std::string("timing.") + key, "the timed frames' size in pixels", "none");
+    suite.timing.width = integer_at(t["width"], source, "timing.width", 1, 8192);
+    suite.timing.height = integer_at(t["height"], source, "timing.height", 1, 8192);
+    if (t.contains("frames"))
+      suite.timing.frames = integer_at(t["frames"], source, "timing.frames", 1, 100);
   }
 
   if (doc.contains("reference")) {

@@ -50,6 +50,9 @@ struct MethodResult {
   // (whose own `reference` is its name: it is measured against itself).
   std::string reference;
   std::vector<TermResult> terms;  // in the suite's term order
+  // Its frame time (ms) at the case's TimingSettings (every light term, the median of its
+  // frames); none for the references, or when the suite times the images themselves.
+  std::optional<double> timing_ms;
   // The reference only, with ReferenceSettings::check_convergence: per term, the largest
   // |row total at twice the samples / row total - 1| (max_row_deviation).
   std::vector<std::pair<std::string, double>> convergence;
@@ -78,6 +81,8 @@ struct CaseResult {
   std::string message;
   double camera_height = 0.0;         // m, for the tables
   std::vector<MethodResult> methods;  // empty for a case that was not rendered
+  // What its methods' timing_ms were measured at (disabled: not timed apart).
+  TimingSettings timing;
   // case_fingerprint of the inputs it was run with ("" in a report written before stop 22):
   // what `thalassa validate --resume` compares to keep it.
   std::string fingerprint;
@@ -93,6 +98,7 @@ struct Report {
   std::string renderer;     // RenderStats::renderer (GL_RENDERER)
   std::string version;      // thalassa's version
   HorizonBandOptions horizon;
+  TimingSettings timing;        // Suite::timing, as run
   ReferenceSettings reference;  // Suite::reference, as run (thalassa validate --reference-samples)
   std::vector<CaseResult> cases;
   // The cases in the suite file: more than cases.size() when `thalassa validate --case` ran

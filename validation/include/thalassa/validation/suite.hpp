@@ -84,6 +84,21 @@ struct FlickerSettings {
   std::vector<std::string> terms = {"all"};  // the terms measured over time (a subset of terms)
 };
 
+// The methods' frame times for the error-against-time plots, measured apart from the images:
+// each method other than the reference is rendered again at width x height with every light
+// term, `frames` times, and its time is the median (RenderStats::frame_ms). The suite's images
+// are sized for the reference's cost, where a frame of every other method is a few ms of fixed
+// overhead on any renderer and does not tell the methods' costs apart. Width and height both 0:
+// the images' own frame times. Not part of a case's fingerprint: `thalassa validate --resume`
+// times a kept case again, without rendering its images, when its timing differs.
+struct TimingSettings {
+  int width = 0;   // pixels, [1, 8192], or 0 with height 0
+  int height = 0;  // pixels, [1, 8192], or 0 with width 0
+  int frames = 5;  // [1, 100]
+  bool enabled() const { return width > 0 && height > 0; }
+  bool operator==(const TimingSettings&) const = default;
+};
+
 // What the reference renderer is asked for (issue 6, point 1); the validate command passes them
 // on. check_convergence: also render the reference with twice the samples and report the
 // largest change of a row's total (it must stay below 1%).
@@ -129,6 +144,7 @@ struct Suite {
   std::vector<SuiteMethod> methods;  // in file order; default: one plain "full"
   std::vector<std::string> terms;    // light terms measured, in file order; default {"all"}
   FlickerSettings flicker;
+  TimingSettings timing;
   ReferenceSettings reference;
   HorizonBandOptions horizon;
   std::vector<SuiteCase> cases;  // in file order, at least one
