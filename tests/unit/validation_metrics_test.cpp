@@ -86,6 +86,7 @@ TEST(ValidationMetrics, IdenticalImagesGiveZeroErrorAndRowRatiosOfOne) {
   EXPECT_LT(defined, 64);  // rows above the horizon see no sea: ratios undefined there
   EXPECT_EQ(m.max_row_deviation, 0.0);
   EXPECT_EQ(m.mean_row_deviation, 0.0);
+  EXPECT_EQ(m.row_error, 0.0);
   ASSERT_GT(m.horizon.pixels, 0);
   EXPECT_EQ(m.horizon.mean, 0.0);
   EXPECT_EQ(m.horizon.std, 0.0);
@@ -108,6 +109,7 @@ TEST(ValidationMetrics, ImageScaledByKGivesRowRatiosKAndRelativeErrorsAbsKMinusO
     }
     EXPECT_NEAR(m.max_row_deviation, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.mean_row_deviation, std::abs(k - 1.0), tolerance);
+    EXPECT_NEAR(m.row_error, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_l1.l, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_l1.g, std::abs(k - 1.0), tolerance);
     EXPECT_NEAR(m.error.relative_rms.l, std::abs(k - 1.0), tolerance);
@@ -178,6 +180,22 @@ TEST(ValidationMetrics, MeanRowDeviationAveragesTheDefinedRows) {
   EXPECT_TRUE(std::isnan(mean_row_deviation({{nan, nan, nan, nan}})));
   EXPECT_TRUE(std::isnan(mean_row_deviation({})));
   EXPECT_EQ(max_row_deviation({}), 0.0);
+}
+
+// The row error weighs each row by the reference's energy, over the defined rows only: a faint
+// row's large ratio (a few glints of one realization) counts for its share of the energy.
+TEST(ValidationMetrics, RowErrorIsTheRelativeL1OfTheDefinedRowTotals) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<ChannelValues> reference = {{10, 0, 0, 0}, {0.1, 0, 0, 0}, {5, 0, 0, 0}};
+  const std::vector<ChannelValues> method = {{11, 0, 0, 0}, {0.5, 0, 0, 0}, {2, 0, 0, 0}};
+  std::vector<ChannelValues> ratios = row_ratios(method, reference);
+  EXPECT_NEAR(row_error(method, reference, ratios), (1.0 + 0.4 + 3.0) / 15.1, 1e-15);
+  EXPECT_NEAR(mean_row_deviation(ratios), (0.1 + 4.0 + 0.6) / 3.0, 1e-15);  // the faint row's 4
+  ratios[2] = {nan, nan, nan, nan};                                         // a row not compared
+  EXPECT_NEAR(row_error(method, reference, ratios), 1.4 / 10.1, 1e-15);
+  for (ChannelValues& r : ratios) r = {nan, nan, nan, nan};
+  EXPECT_TRUE(std::isnan(row_error(method, reference, ratios)));
+  EXPECT_THROW(row_error(method, {reference[0]}, ratios), std::invalid_argument);
 }
 
 TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethodIsBlackToo) {

@@ -82,6 +82,7 @@ TermMetrics synthetic_metrics(double seed, int rows) {
   }
   m.max_row_deviation = seed / 100.0 + 1.0 / 3.0;
   m.mean_row_deviation = seed / 300.0 + 1.0 / 7.0;
+  m.row_error = seed / 500.0 + 1.0 / 9.0;
   m.error.pixels = 1234;
   m.error.relative_l1 = {seed / 10 + 1e-17, 0.1 / 3, 0.2 / 3, 0.3 / 7};
   m.error.relative_rms = {seed / 9, 0.11, 0.12, NAN};
@@ -282,6 +283,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     expect_same(csv_number(f[col["rel_rms_b"]]), t.metrics.error.relative_rms.b, what + " rms b");
     expect_same(csv_number(f[col["max_row_deviation"]]), t.metrics.max_row_deviation, what);
     expect_same(csv_number(f[col["mean_row_deviation"]]), t.metrics.mean_row_deviation, what);
+    expect_same(csv_number(f[col["row_error"]]), t.metrics.row_error, what);
     expect_same(csv_number(f[col["horizon_std"]]), t.metrics.horizon.std, what + " std");
     expect_same(csv_number(f[col["flicker"]]), t.flicker.value_or(NAN), what + " flicker");
     expect_same(csv_number(f[col["reference_flicker"]]),
@@ -356,6 +358,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
       expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);
       expect_same(x.metrics.error.relative_l1.l, w.metrics.error.relative_l1.l, what);
       expect_same(x.metrics.mean_row_deviation, w.metrics.mean_row_deviation, what);
+      expect_same(x.metrics.row_error, w.metrics.row_error, what);
       expect_same(x.metrics.error.relative_rms.b, w.metrics.error.relative_rms.b, what);
       expect_same(x.metrics.error.mean_abs.l, w.metrics.error.mean_abs.l, what);
       EXPECT_EQ(x.metrics.error.pixels, w.metrics.error.pixels);
@@ -377,20 +380,34 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(report_json(back), report_json(report));
 }
 
-// A report of stop 22 or before has no mean_row_deviation: it is read back as its rows' mean.
-TEST_F(ValidationReport, AnOlderReportGetsItsMeanRowDeviationFromItsRows) {
-  nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(synthetic_report()));
+// A report of stop 22 or before has no mean_row_deviation nor row_error: they are read back as
+// its rows' mean, and its rows' error against the rows of the reference each method was
+// measured against.
+TEST_F(ValidationReport, AnOlderReportGetsItsRowMetricsFromItsRows) {
+  const Report report = synthetic_report();
+  nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(report));
   for (auto& jm : j["cases"][0]["methods"])
-    for (auto& jt : jm["terms"]) jt.erase("mean_row_deviation");
+    for (auto& jt : jm["terms"]) {
+      jt.erase("mean_row_deviation");
+      jt.erase("row_error");
+    }
   const Report back = report_from_json(j.dump());
-  for (const MethodResult& m : back.cases[0].methods)
-    for (const TermResult& t : m.terms)
-      EXPECT_EQ(t.metrics.mean_row_deviation, mean_row_deviation(t.metrics.row_ratios)) << m.name;
+  const CaseResult& c = back.cases[0];
+  ASSERT_EQ(c.methods[0].name, "reference");
+  for (const MethodResult& m : c.methods)
+    for (std::size_t ti = 0; ti < m.terms.size(); ++ti) {
+      const TermMetrics& t = m.terms[ti].metrics;
+      EXPECT_EQ(t.mean_row_deviation, mean_row_deviation(t.row_ratios)) << m.name;
+      const double want =
+          row_error(t.row_totals, c.methods[0].terms[ti].metrics.row_totals, t.row_ratios);
+      ASSERT_TRUE(std::isfinite(want));
+      EXPECT_EQ(t.row_error, want) << m.name;
+    }
 }
 
 // Over the cases: per method and term the median and the largest of each case's errors, the
-// reference left out; fig. 10's claim only for the cases at 100 m or higher, by the mean row
-// deviation, not holding where either method's is undefined.
+// reference left out; fig. 10's claim only for the cases at 100 m or higher, by the row error,
+// not holding where either method's is undefined.
 TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Report report;
@@ -406,9 +423,9 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
       t.frame_ms = method == std::string("full") ? height : 1.0;
       t.metrics.row_totals = {{1.0, 1.0, 1.0, 1.0}};  // measured
       t.metrics.error.relative_l1.l = method == std::string("full") ? full_l1 : 0.5;
-      t.metrics.mean_row_deviation = method == std::string("full")    ? full_rows
-                                     : method == std::string("basic") ? basic_rows
-                                                                      : 0.0;
+      t.metrics.row_error = method == std::string("full")    ? full_rows
+                            : method == std::string("basic") ? basic_rows
+                                                             : 0.0;
       m.terms.push_back(t);
       c.methods.push_back(m);
     }
@@ -427,8 +444,8 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   EXPECT_EQ(full.cases, 4);
   EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2 (undefined left out)
   EXPECT_DOUBLE_EQ(full.worst_relative_l1, 0.3);
-  EXPECT_DOUBLE_EQ(full.median_row_deviation, 0.3);  // of 0.9, 0.05, 0.3
-  EXPECT_DOUBLE_EQ(full.worst_row_deviation, 0.9);
+  EXPECT_DOUBLE_EQ(full.median_row_error, 0.3);  // of 0.9, 0.05, 0.3
+  EXPECT_DOUBLE_EQ(full.worst_row_error, 0.9);
   EXPECT_DOUBLE_EQ(full.median_frame_ms, 0.5 * (100.0 + 1000.0));  // of 4, 100, 1000, 8000
   EXPECT_DOUBLE_EQ(lines[0].median_relative_l1, 0.5);
   const std::vector<ClaimLine> claim = fig10_claim(report);
@@ -459,6 +476,7 @@ TEST_F(ValidationReport, NoRowComparedDrawsALabelAndNoSummaryPlot) {
   for (MethodResult& m : report.cases[0].methods)
     for (TermResult& t : m.terms) {
       t.metrics.mean_row_deviation = NAN;
+      t.metrics.row_error = NAN;
       for (ChannelValues& v : t.metrics.row_totals) v = {NAN, NAN, NAN, NAN};
       for (ChannelValues& v : t.metrics.row_ratios) v = {NAN, NAN, NAN, NAN};
     }

@@ -175,6 +175,22 @@ double mean_row_deviation(const std::vector<ChannelValues>& ratios) {
   return rows > 0 ? sum / rows : kNaN;
 }
 
+double row_error(const std::vector<ChannelValues>& method_totals,
+                 const std::vector<ChannelValues>& reference_totals,
+                 const std::vector<ChannelValues>& ratios) {
+  if (method_totals.size() != reference_totals.size() || ratios.size() != method_totals.size())
+    throw std::invalid_argument("row_error: " + std::to_string(method_totals.size()) + ", " +
+                                std::to_string(reference_totals.size()) + " and " +
+                                std::to_string(ratios.size()) + " rows");
+  double error = 0.0, total = 0.0;
+  for (std::size_t y = 0; y < ratios.size(); ++y) {
+    if (!std::isfinite(ratios[y].l)) continue;
+    error += std::abs(method_totals[y].l - reference_totals[y].l);
+    total += reference_totals[y].l;
+  }
+  return total > 0.0 ? error / total : kNaN;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Errors over the sea
 
@@ -356,9 +372,11 @@ TermMetrics compare_images(const Image& method, const Image& reference, const Vi
                                 std::to_string(method.width) + "x" + std::to_string(method.height));
   TermMetrics m;
   m.row_totals = row_totals(method, &mask);
-  m.row_ratios = row_ratios(m.row_totals, row_totals(reference, &mask));
+  const std::vector<ChannelValues> reference_totals = row_totals(reference, &mask);
+  m.row_ratios = row_ratios(m.row_totals, reference_totals);
   m.max_row_deviation = max_row_deviation(m.row_ratios);
   m.mean_row_deviation = mean_row_deviation(m.row_ratios);
+  m.row_error = row_error(m.row_totals, reference_totals, m.row_ratios);
   m.error = relative_errors(method, reference, mask);
   m.horizon = horizon_band(method, reference, view, options, compared);
   return m;

@@ -447,8 +447,8 @@ double max_of(const std::vector<double>& values) {
   return worst;
 }
 
-// Over the cases: each plain method's mean |row ratio - 1| against the camera's height, the
-// median over the cases at each height (fig. 10 across distances).
+// Over the cases: each plain method's row error (TermMetrics::row_error) against the camera's
+// height, the median over the cases at each height (fig. 10 across distances).
 std::string summary_height_plot(const std::string& gnuplot, const fs::path& plots,
                                 const Report& report, const std::string& term,
                                 const ReportOptions& options) {
@@ -469,7 +469,7 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
   bool any = false;  // gnuplot refuses a plot with no defined point: then there is no plot
   std::string data = "# camera_height_m";
   for (const std::string& m : methods) data += " " + m;
-  data += "\n# the median over the cases at that height of the mean |row ratio - 1| (luminance)\n";
+  data += "\n# the median over the cases at that height of the row error (luminance)\n";
   for (double height : heights) {
     data += number(height);
     for (const std::string& name : methods) {
@@ -478,7 +478,7 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
         if (c.camera_height == height)
           if (const MethodResult* m = method_named(c, name))
             if (const TermResult* t = term_of(*m, term); t && measured(*t))
-              values.push_back(t->metrics.mean_row_deviation);
+              values.push_back(t->metrics.row_error);
       const double median = median_of(values);
       any = any || std::isfinite(median);
       data += " " + number(median, "NaN");
@@ -488,9 +488,9 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
   if (!any) return "";
   const std::string name = "summary_" + term + "_height";
   std::string script = "set title '" + term +
-                       ": mean |row ratio - 1| against the camera height (median over the cases "
-                       "at each height)'\nset key outside right\nset grid\n"
-                       "set xlabel 'camera height (m)'\nset ylabel 'mean |row ratio - 1|'\n"
+                       ": relative L1 error of the row totals against the camera height "
+                       "(median over the cases at each height)'\nset key outside right\nset grid\n"
+                       "set xlabel 'camera height (m)'\nset ylabel 'row error'\n"
                        "set yrange [0:*]\n";
   // A log axis needs positive heights; a camera below the sea's rest level keeps it linear.
   if (heights.front() > 0.0)
@@ -529,6 +529,7 @@ std::string metrics_csv(const Report& report) {
                               "reference_mean_l",
                               "max_row_deviation",
                               "mean_row_deviation",
+                              "row_error",
                               "horizon_mean",
                               "horizon_std",
                               "horizon_reference_mean",
@@ -566,6 +567,7 @@ std::string metrics_csv(const Report& report) {
                          number(e.reference_mean.l),
                          number(t.metrics.max_row_deviation),
                          number(t.metrics.mean_row_deviation),
+                         number(t.metrics.row_error),
                          number(h.mean),
                          number(h.std),
                          number(h.reference_mean),
@@ -624,19 +626,18 @@ std::string cases_csv(const Report& report) {
 }
 
 std::string summary_csv(const Report& report) {
-  std::string csv =
-      csv_line({"method", "term", "cases", "median_rel_l1_l", "worst_rel_l1_l",
-                "median_mean_row_deviation", "worst_mean_row_deviation", "median_frame_ms"});
+  std::string csv = csv_line({"method", "term", "cases", "median_rel_l1_l", "worst_rel_l1_l",
+                              "median_row_error", "worst_row_error", "median_frame_ms"});
   for (const SummaryLine& s : summarize(report))
     csv += csv_line({s.method, s.term, std::to_string(s.cases), number(s.median_relative_l1),
-                     number(s.worst_relative_l1), number(s.median_row_deviation),
-                     number(s.worst_row_deviation), number(s.median_frame_ms)});
+                     number(s.worst_relative_l1), number(s.median_row_error),
+                     number(s.worst_row_error), number(s.median_frame_ms)});
   return csv;
 }
 
 std::string claim_csv(const Report& report) {
-  std::string csv = csv_line({"case", "camera_height_m", "term", "full_mean_row_deviation",
-                              "basic_mean_row_deviation", "full_closer"});
+  std::string csv = csv_line(
+      {"case", "camera_height_m", "term", "full_row_error", "basic_row_error", "full_closer"});
   for (const ClaimLine& l : fig10_claim(report))
     csv += csv_line({l.case_name, number(l.camera_height), l.term, number(l.full), number(l.basic),
                      l.holds() ? "1" : "0"});
@@ -655,17 +656,17 @@ std::string summary_html(const Report& report,
   std::string h = "<h2>Over the cases</h2>\n<p>Per method and term, over the " +
                   std::to_string(report.cases.size()) +
                   " cases of this report (<a href=\"summary.csv\">summary.csv</a>): the median "
-                  "and the largest relative L1 error of the luminance over the sea, and of the "
-                  "mean |row ratio - 1| (fig. 10's energy per row), and the median frame "
+                  "and the largest relative L1 error of the luminance over the sea, and of its "
+                  "row totals (the row error: fig. 10's energy per distance), and the median frame "
                   "time (timed apart where the cases "
                   "were).</p>\n<table><tr><th>method</th><th>term</th><th>cases</th><th>rel. L1, "
-                  "median</th><th>rel. L1, largest</th><th>mean |row ratio - 1|, median</th>"
-                  "<th>mean |row ratio - 1|, largest</th><th>frame (ms), median</th></tr>\n";
+                  "median</th><th>rel. L1, largest</th><th>row error, median</th>"
+                  "<th>row error, largest</th><th>frame (ms), median</th></tr>\n";
   for (const SummaryLine& s : lines)
     h += "<tr><td class=\"t\">" + html(s.method) + "</td><td class=\"t\">" + html(s.term) +
          "</td><td>" + std::to_string(s.cases) + "</td><td>" + short_number(s.median_relative_l1) +
          "</td><td>" + short_number(s.worst_relative_l1) + "</td><td>" +
-         short_number(s.median_row_deviation) + "</td><td>" + short_number(s.worst_row_deviation) +
+         short_number(s.median_row_error) + "</td><td>" + short_number(s.worst_row_error) +
          "</td><td>" + short_number(s.median_frame_ms) + "</td></tr>\n";
   h += "</table>\n";
   const std::vector<ClaimLine> claim = fig10_claim(report);
@@ -675,7 +676,7 @@ std::string summary_html(const Report& report,
     h += "<p>Fig. 10's claim, the full method closer to the reference than the basic one with "
          "the camera at " +
          short_number(kClaimMinHeight) +
-         " m or higher, by the mean |row ratio - 1| (<a href=\"claim.csv\">claim.csv</a>): it "
+         " m or higher, by the row error (<a href=\"claim.csv\">claim.csv</a>): it "
          "holds in " +
          std::to_string(holds) + " of " + std::to_string(claim.size()) +
          " cases and terms.</p>\n<table><tr><th>case</th><th>camera height (m)</th><th>term</th>"
@@ -790,7 +791,8 @@ std::string index_html(const Report& report,
          html(timing_text(c.timing)) +
          "</th><th>samples</th><th>rel. "
          "L1</th><th>rel. "
-         "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>horizon "
+         "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>row "
+         "error</th><th>horizon "
          "mean</th><th>horizon std</th>"
          "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
     for (const MethodResult& m : c.methods)
@@ -808,6 +810,7 @@ std::string index_html(const Report& report,
              short_number(t.metrics.error.relative_rms.l) + "</td><td>" +
              short_number(t.metrics.max_row_deviation) + "</td><td>" +
              short_number(t.metrics.mean_row_deviation) + "</td><td>" +
+             short_number(t.metrics.row_error) + "</td><td>" +
              short_number(t.metrics.horizon.mean) + "</td><td>" +
              short_number(t.metrics.horizon.std) + "</td><td>" +
              short_number(t.flicker.value_or(kNaN)) + "</td><td>" +
@@ -878,7 +881,7 @@ std::vector<SummaryLine> summarize(const Report& report) {
         }
         Values& v = values[std::size_t(found - keys.begin())];
         v.l1.push_back(t.metrics.error.relative_l1.l);
-        v.rows.push_back(t.metrics.mean_row_deviation);
+        v.rows.push_back(t.metrics.row_error);
         v.ms.push_back(cost_ms(m, t));
       }
     }
@@ -890,8 +893,8 @@ std::vector<SummaryLine> summarize(const Report& report) {
                      .cases = static_cast<int>(v.l1.size()),
                      .median_relative_l1 = median_of(v.l1),
                      .worst_relative_l1 = max_of(v.l1),
-                     .median_row_deviation = median_of(v.rows),
-                     .worst_row_deviation = max_of(v.rows),
+                     .median_row_error = median_of(v.rows),
+                     .worst_row_error = max_of(v.rows),
                      .median_frame_ms = median_of(v.ms)});
   }
   return lines;
@@ -910,8 +913,8 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
       lines.push_back({.case_name = c.name,
                        .camera_height = c.camera_height,
                        .term = f.term,
-                       .full = f.metrics.mean_row_deviation,
-                       .basic = b->metrics.mean_row_deviation});
+                       .full = f.metrics.row_error,
+                       .basic = b->metrics.row_error});
     }
   }
   return lines;
@@ -995,6 +998,7 @@ std::string report_json(const Report& report) {
         if (t.temporal_error) jt["temporal_error"] = *t.temporal_error;
         jt["max_row_deviation"] = t.metrics.max_row_deviation;
         jt["mean_row_deviation"] = t.metrics.mean_row_deviation;
+        jt["row_error"] = t.metrics.row_error;
         jt["error"] = {{"pixels", e.pixels},
                        {"relative_l1", channels_json(e.relative_l1)},
                        {"relative_rms", channels_json(e.relative_rms)},
@@ -1065,6 +1069,7 @@ Report report_from_json(const std::string& json_text) {
     c.message = jc.at("message");
     c.camera_height = get_number(jc.at("camera_height"));
     c.fingerprint = jc.value("fingerprint", std::string());
+    std::vector<std::pair<std::size_t, std::size_t>> without_row_error;  // (method, term)
     if (jc.contains("timing")) c.timing = timing_from(jc.at("timing"));
     for (const ojson& jm : jc.at("methods")) {
       MethodResult m;
@@ -1114,9 +1119,25 @@ Report report_from_json(const std::string& json_text) {
         t.metrics.mean_row_deviation = jt.contains("mean_row_deviation")
                                            ? get_number(jt.at("mean_row_deviation"))
                                            : mean_row_deviation(t.metrics.row_ratios);
+        if (jt.contains("row_error"))
+          t.metrics.row_error = get_number(jt.at("row_error"));
+        else
+          without_row_error.push_back({c.methods.size(), m.terms.size()});
         m.terms.push_back(std::move(t));
       }
       c.methods.push_back(std::move(m));
+    }
+    // A report written before stop 23 has no row error: it is the rows' against those of the
+    // reference each method was measured against, which the report holds.
+    for (const auto& [mi, ti] : without_row_error) {
+      const MethodResult& m = c.methods[mi];
+      TermMetrics& metrics = c.methods[mi].terms[ti].metrics;
+      const MethodResult* against = measured_against(c, m);
+      const TermResult* reference = against ? term_of(*against, m.terms[ti].term) : nullptr;
+      metrics.row_error =
+          reference && reference->metrics.row_totals.size() == metrics.row_totals.size()
+              ? row_error(metrics.row_totals, reference->metrics.row_totals, metrics.row_ratios)
+              : kNaN;
     }
     report.cases.push_back(std::move(c));
   }

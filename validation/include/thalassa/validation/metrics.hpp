@@ -123,6 +123,14 @@ double max_row_deviation(const std::vector<ChannelValues>& ratios);
 // fig. 10's comparison of the energy per distance over the whole view, which one row (a few
 // glints of the reference's sea in it) does not decide as it decides max_row_deviation.
 double mean_row_deviation(const std::vector<ChannelValues>& ratios);
+// The relative L1 error of the row totals (luminance) over the rows where the ratio is defined:
+// sum |T_method - T_reference| / sum T_reference (NaN when no row is defined or the reference's
+// sum is 0). The energy per distance, weighted by the reference's energy: where the reference's
+// sea holds a few glints a row, a faint row's ratio is the realization's luck, and each row
+// counting once (mean_row_deviation) lets those rows decide. |k - 1| for k times the reference.
+double row_error(const std::vector<ChannelValues>& method_totals,
+                 const std::vector<ChannelValues>& reference_totals,
+                 const std::vector<ChannelValues>& ratios);
 
 // ---------------------------------------------------------------------------------------------
 // Relative errors over the sea.
@@ -201,6 +209,7 @@ struct TermMetrics {
   std::vector<ChannelValues> row_ratios;  // to the reference's row totals (NaN: undefined)
   double max_row_deviation = 0.0;         // of row_ratios
   double mean_row_deviation = 0.0;        // of row_ratios (NaN: no row defined)
+  double row_error = 0.0;                 // of row_totals against the reference's (NaN: none)
   ErrorStats error;                       // over the sea mask
   HorizonBand horizon;
 };

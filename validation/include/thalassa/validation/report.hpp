@@ -114,24 +114,25 @@ struct SummaryLine {
   std::string term;
   int cases = 0;  // cases where the term was measured against a reference
   // Over those cases (NaN where none is defined): the median and the largest relative L1 error
-  // of the luminance over the sea, the median and largest mean |row ratio - 1|
-  // (TermMetrics::mean_row_deviation), and the median frame time (ms).
+  // of the luminance over the sea and of the row totals (TermMetrics::row_error), and the median
+  // frame time (ms; timed apart where the case was, MethodResult::timing_ms).
   double median_relative_l1 = 0.0, worst_relative_l1 = 0.0;
-  double median_row_deviation = 0.0, worst_row_deviation = 0.0;
+  double median_row_error = 0.0, worst_row_error = 0.0;
   double median_frame_ms = 0.0;
 };
 std::vector<SummaryLine> summarize(const Report& report);
 
 // Fig. 10's claim (Bruneton et al. 2010; issue 6, point 5): at every distance beyond
 // kClaimMinHeight the full method is closer to the reference than the basic one. Per case with
-// the camera at or above that height and per term: the mean |row ratio - 1| of `full` and of
-// `basic` and whether full's is the smaller. Cases without both methods measured are left out.
+// the camera at or above that height and per term: the row error (TermMetrics::row_error, the
+// energy per distance) of `full` and of `basic` and whether full's is the smaller. Cases
+// without both methods measured are left out.
 inline constexpr double kClaimMinHeight = 100.0;  // m, the issue's "beyond 100 m"
 struct ClaimLine {
   std::string case_name;
   double camera_height = 0.0;  // m
   std::string term;
-  double full = 0.0, basic = 0.0;  // mean row deviations (NaN: no row defined)
+  double full = 0.0, basic = 0.0;  // row errors (NaN: no row defined)
   // full < basic; false where either is undefined.
   bool holds() const { return full < basic; }
 };
@@ -153,7 +154,7 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   plots/<case>_error_time.{dat,gp,png}       relative L1 error against frame time
 //   plots/<case>_<term>_horizon.{dat,gp,png}   near-horizon mean and std (paper 004, fig. 5)
 //   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
-//   plots/summary_<term>_height.{dat,gp,png}   mean row deviation against camera height
+//   plots/summary_<term>_height.{dat,gp,png}   row error against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,
                                       const ReportOptions& options = {});
