@@ -527,7 +527,7 @@ TEST_F(Cli, ValidateTimesTheMethodsApartAndRetimesAResumedCase) {
   std::ifstream dat(dir_ / "out" / "plots" / "a_error_time.dat");
   const std::string data{std::istreambuf_iterator<char>(dat), std::istreambuf_iterator<char>()};
   char line[128];
-  std::snprintf(line, sizeof line, "\nfull %.17g ", c["methods"][1]["timing_ms"].get<double>());
+  std::snprintf(line, sizeof line, "\nfull sky %.17g ", c["methods"][1]["timing_ms"].get<double>());
   EXPECT_NE(data.find(line), std::string::npos) << data;
 
   // Another timing: the case is kept, its images untouched, its methods timed again.

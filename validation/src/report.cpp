@@ -312,41 +312,52 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   return draw(gnuplot, plots, name, data, script, options);
 }
 
-// Every method and variant: its relative L1 error over the sea against its frame time (timed
-// apart at the case's TimingSettings when it has them, every term in one frame), one series per
-// term; the reference's time (at the images' size) as a dashed line per term.
+// Every method and variant: its relative L1 error over the sea (left) and its row error (right,
+// TermMetrics::row_error) against its frame time (timed apart at the case's TimingSettings when
+// it has them, every term in one frame). A colour per method, a point shape per term; the
+// reference's time (at the images' size) as a dashed line per term.
 std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
                             const ReportOptions& options) {
   const std::vector<std::string> terms = case_terms(c);
   if (terms.empty()) return "";
-  bool any = false;  // a suite without a reference measures nothing to plot
+  std::vector<const MethodResult*> methods;  // the case's as dashed lines; a variant's own: 0
   for (const MethodResult& m : c.methods)
-    for (const TermResult& t : m.terms) any = any || (measured(t) && !(m.method == "reference"));
+    if (m.method != "reference") methods.push_back(&m);
+  bool any = false;  // a suite without a reference measures nothing to plot
+  for (const MethodResult* m : methods)
+    for (const TermResult& t : m->terms) any = any || measured(t);
   if (!any) return "";
-  std::string data = "# method";
-  for (const std::string& t : terms) data += " frame_ms_" + t + " relative_l1_" + t;
-  data += "\n";
-  for (const MethodResult& m : c.methods) {
-    if (m.method == "reference") continue;  // the case's as dashed lines; a variant's own: 0
-    data += m.name;
-    for (const std::string& term : terms) {
-      const TermResult* t = term_of(m, term);
-      data += " " + number(t ? cost_ms(m, *t) : kNaN, "NaN") + " " +
-              number(t ? t->metrics.error.relative_l1.l : kNaN, "NaN");
+  // Filled circle, square, triangle up, diamond, triangle down (pngcairo's point types).
+  static constexpr int kTermPoint[] = {7, 5, 9, 13, 11};
+  // Colours that stay apart for a dozen methods (the default palette cycles after 8).
+  static constexpr const char* kMethodColour[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728",
+                                                  "#9467bd", "#8c564b", "#e377c2", "#7f7f7f",
+                                                  "#bcbd22", "#17becf", "#000000", "#b8860b"};
+  constexpr std::size_t kColours = std::size(kMethodColour);
+  std::string data = "# method term frame_ms relative_l1 row_error method_index term_index\n";
+  for (std::size_t mi = 0; mi < methods.size(); ++mi)
+    for (std::size_t ti = 0; ti < terms.size(); ++ti) {
+      const TermResult* t = term_of(*methods[mi], terms[ti]);
+      if (!t || !measured(*t)) continue;
+      data += methods[mi]->name + " " + terms[ti] + " " + number(cost_ms(*methods[mi], *t), "NaN") +
+              " " + number(t->metrics.error.relative_l1.l, "NaN") + " " +
+              number(t->metrics.row_error, "NaN") + " " + std::to_string(mi + 1) + " " +
+              std::to_string(kTermPoint[ti % std::size(kTermPoint)]) + "\n";
     }
-    data += "\n";
-  }
   const std::string name = c.name + "_error_time";
-  std::string script = "set title '" + c.name +
-                       ": relative L1 error of the luminance over the sea against frame time'\n"
-                       "set key outside right\nset grid\nset logscale x\n"
-                       // (No apostrophe inside: the label is a single-quoted gnuplot string.)
-                       "set xlabel 'frame time (ms)" +
-                       (c.timing.enabled() ? ", every term at " + timing_text(c.timing) +
-                                                 "; the reference at the image size"
-                                           : std::string()) +
-                       "'\nset ylabel 'relative L1 error'\n"
-                       "set yrange [0:*]\n";
+  std::string script;
+  for (std::size_t i = 0; i < kColours; ++i)
+    script += "set linetype " + std::to_string(i + 1) + " lc rgb '" + kMethodColour[i] + "'\n";
+  script += "set linetype cycle " + std::to_string(kColours) + "\n";
+  // A double-quoted gnuplot string (for its line break): the names hold no quote.
+  script += "set multiplot layout 1,2 title \"" + c.name +
+            ": error over the sea against frame time" +
+            (c.timing.enabled() ? "\\n(methods timed at " + timing_text(c.timing) +
+                                      " with every term; the reference at the image size)"
+                                : std::string()) +
+            "\" font ',10' margins 0.08,0.78,0.12,0.88 spacing 0.09\n"
+            "set grid\nset logscale x\nunset key\n"
+            "set xlabel 'frame time (ms)'\n";
   // The x range covers every time, the reference's included (arrows do not widen it).
   double lo = HUGE_VAL, hi = 0.0;
   for (const MethodResult& m : c.methods)
@@ -364,22 +375,45 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
       script += "set arrow " + std::to_string(++i) + " from " + number(t->frame_ms) +
                 ", graph 0 to " + number(t->frame_ms) + ", graph 1 nohead dt 2 lc rgb 'gray40'\n";
       script += "set label " + std::to_string(i) + " 'reference (" + term + ")' at " +
-                number(t->frame_ms) + ", graph " + number(0.95 - 0.05 * i) +
-                " right offset -0.5,0\n";
+                number(t->frame_ms) + ", graph " + number(0.97 - 0.05 * i) +
+                " right offset -0.5,0 font ',8'\n";
     }
   }
-  script += "plot ";
-  for (std::size_t i = 0; i < terms.size(); ++i) {
-    const std::string x = std::to_string(2 + 2 * i), y = std::to_string(3 + 2 * i);
-    script += std::string(i ? ", " : "") + "'" + name + ".dat' using " + x + ":" + y +
-              " with points pt 7 ps 1.2 title '" + terms[i] + "'";
-  }
-  // The methods' names beside the last term's points only (the terms' points of one method
-  // would print its name once each, on top of one another).
-  const std::string x = std::to_string(2 * terms.size()), y = std::to_string(2 * terms.size() + 1);
+  // Whether a panel has a point: gnuplot refuses a plot whose every point is undefined (no row
+  // compared: the row error is undefined for every method).
+  const auto any_finite = [&](auto value) {
+    for (const MethodResult* m : methods)
+      for (const TermResult& t : m->terms)
+        if (measured(t) && std::isfinite(value(t))) return true;
+    return false;
+  };
+  const auto panel = [&](int column, const std::string& ylabel, bool has_points, bool key) {
+    std::string p = "set ylabel '" + ylabel + "'\n";
+    if (has_points) {
+      p += "set yrange [0:*]\nplot '" + name + ".dat' using 3:" + std::to_string(column) +
+           ":7:6 with points pt variable ps 1.3 lc variable notitle";
+    } else {
+      p += "set yrange [0:1]\nset label 20 'nothing compared' at graph 0.5, graph 0.5 center\n"
+           "plot 0 with lines dt 2 lc rgb 'grey' notitle";
+    }
+    if (key) {
+      // One entry per method (its colour) and per term (its shape), outside on the right.
+      p = "set key at screen 0.99, screen 0.88 right top font ',8' spacing 1.1\n" + p;
+      for (std::size_t mi = 0; mi < methods.size(); ++mi)
+        p += ", NaN with points pt 7 lc " + std::to_string(mi % kColours + 1) + " title '" +
+             methods[mi]->name + "'";
+      for (std::size_t ti = 0; ti < terms.size(); ++ti)
+        p += ", NaN with points pt " + std::to_string(kTermPoint[ti % std::size(kTermPoint)]) +
+             " lc rgb 'black' title '" + terms[ti] + "'";
+    }
+    return p + "\nunset label 20\n";
+  };
   script +=
-      ", '" + name + ".dat' using " + x + ":" + y + ":1 with labels offset 0,0.8 font ',8' notitle";
-  script += "\n";
+      panel(4, "relative L1 error (per pixel)",
+            any_finite([](const TermResult& t) { return t.metrics.error.relative_l1.l; }), false);
+  script += panel(5, "row error (energy per row)",
+                  any_finite([](const TermResult& t) { return t.metrics.row_error; }), true);
+  script += "unset multiplot\n";
   return draw(gnuplot, plots, name, data, script, options);
 }
 
