@@ -435,34 +435,42 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   add_case("mid", 100.0, 0.1, 0.05, 0.2);
   add_case("far", 8000.0, 0.2, 0.3, 0.25);
   add_case("dark", 1000.0, nan, nan, 0.4);
+  add_case("same", 1000.0, 0.2, 0.125, 0.125);
   const std::vector<SummaryLine> lines = summarize(report);
   ASSERT_EQ(lines.size(), 2u);  // basic and full, sky; no line for the reference
   EXPECT_EQ(lines[0].method, "basic");
   const SummaryLine& full = lines[1];
   EXPECT_EQ(full.method, "full");
   EXPECT_EQ(full.term, "sky");
-  EXPECT_EQ(full.cases, 4);
-  EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2 (undefined left out)
+  EXPECT_EQ(full.cases, 5);
+  EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2, 0.2 (undefined out)
   EXPECT_DOUBLE_EQ(full.worst_relative_l1, 0.3);
-  EXPECT_DOUBLE_EQ(full.median_row_error, 0.3);  // of 0.9, 0.05, 0.3
+  EXPECT_DOUBLE_EQ(full.median_row_error, 0.5 * (0.125 + 0.3));  // of 0.9, 0.05, 0.3, 0.125
   EXPECT_DOUBLE_EQ(full.worst_row_error, 0.9);
-  EXPECT_DOUBLE_EQ(full.median_frame_ms, 0.5 * (100.0 + 1000.0));  // of 4, 100, 1000, 8000
+  EXPECT_DOUBLE_EQ(full.median_frame_ms, 1000.0);  // of 4, 100, 1000, 1000, 8000
   EXPECT_DOUBLE_EQ(lines[0].median_relative_l1, 0.5);
   const std::vector<ClaimLine> claim = fig10_claim(report);
-  ASSERT_EQ(claim.size(), 3u);
+  ASSERT_EQ(claim.size(), 4u);
   EXPECT_EQ(claim[0].case_name, "mid");
   EXPECT_TRUE(claim[0].holds());
+  EXPECT_EQ(claim[0].verdict(), "closer");
   EXPECT_EQ(claim[1].case_name, "far");
   EXPECT_FALSE(claim[1].holds());
+  EXPECT_EQ(claim[1].verdict(), "farther");
   EXPECT_EQ(claim[2].case_name, "dark");
   EXPECT_FALSE(claim[2].holds());
+  EXPECT_EQ(claim[2].verdict(), "undefined");
+  EXPECT_TRUE(claim[3].same());
+  EXPECT_FALSE(claim[3].holds());
+  EXPECT_EQ(claim[3].verdict(), "same");
   write_report(report, dir_.string());
   const auto csv = parse_csv(read_text(dir_ / "claim.csv"));
-  ASSERT_EQ(csv.size(), 4u);
-  EXPECT_EQ(csv[1][5], "1");
-  EXPECT_EQ(csv[2][5], "0");
+  ASSERT_EQ(csv.size(), 5u);
+  EXPECT_EQ(csv[1][5], "closer");
+  EXPECT_EQ(csv[2][5], "farther");
   EXPECT_EQ(csv[3][3], "");  // undefined: empty
-  EXPECT_NE(read_text(dir_ / "index.html").find("it holds in 1 of 3 cases and terms"),
+  EXPECT_EQ(csv[4][5], "same");
+  EXPECT_NE(read_text(dir_ / "index.html").find("it holds in 1 of 4 cases and terms; in 1 the two"),
             std::string::npos);
   const std::string heights = read_text(dir_ / "plots" / "summary_sky_height.dat");
   EXPECT_NE(heights.find("\n4 0.10000000000000001 0.90000000000000002\n"), std::string::npos)

@@ -133,8 +133,13 @@ struct ClaimLine {
   double camera_height = 0.0;  // m
   std::string term;
   double full = 0.0, basic = 0.0;  // row errors (NaN: no row defined)
-  // full < basic; false where either is undefined.
+  // full < basic; false where either is undefined or they are equal.
   bool holds() const { return full < basic; }
+  // The two drew the same rows: where the foreground's pixels already leave every wave
+  // unresolved, basic's one slope variance is full's everywhere and the images are the same.
+  bool same() const { return full == basic; }
+  // "closer", "same", "farther" or "undefined" (either is).
+  std::string verdict() const;
 };
 std::vector<ClaimLine> fig10_claim(const Report& report);
 
