@@ -64,6 +64,10 @@ struct ValidateArgs {
   std::string backend;  // empty: the default headless backend
   // --case: the names (or shell patterns, "wind10_*") of the cases to run; empty: every case.
   std::vector<std::string> cases;
+  // --method, --term: the suite's methods (or variants) and terms to run; empty: all of them
+  // (validation::narrow_suite; the reference is always rendered).
+  std::vector<std::string> methods;
+  std::vector<std::string> terms;
   // --reference-samples: overrides the suite's reference.pixel_samples; 0: the suite's.
   int reference_samples = 0;
   // --resume: keep the cases of the report already in `dir` that were run with the same inputs.

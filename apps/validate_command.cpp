@@ -358,6 +358,13 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
   validate->add_option("--case", args.cases,
                        "Run only this case (a name or a shell pattern such as 'wind10_*'; may be "
                        "given more than once; default: every case)");
+  validate->add_option("--method", args.methods,
+                       "Render only this method or variant of the suite (its name; may be given "
+                       "more than once; default: every one). The suite's reference is rendered "
+                       "whatever this says: every metric compares with it");
+  validate->add_option("--term", args.terms,
+                       "Measure only this light term of the suite's terms (sun, sky, sea, air or "
+                       "all; may be given more than once; default: every one)");
   validate
       ->add_option("--reference-samples", args.reference_samples,
                    "The reference's most samples per pixel, instead of the suite's "
@@ -428,6 +435,7 @@ int run_validate(const ValidateArgs& args) {
     suite =
         args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
     selected = select_cases(suite, args.cases);
+    validation::narrow_suite(suite, args.methods, args.terms);
     if (args.reference_samples > 0) {
       // The terms with the sun take N; those without keep their own cap where it is larger.
       validation::ReferenceSettings& reference = suite.reference;

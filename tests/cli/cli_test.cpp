@@ -422,6 +422,24 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   std::ifstream html(dir_ / "out" / "index.html");
   const std::string page{std::istreambuf_iterator<char>(html), std::istreambuf_iterator<char>()};
   EXPECT_NE(page.find("2 of its 3 cases were run"), std::string::npos);
+
+  // --method and --term narrow the methods and terms (validation::narrow_suite); an unknown one
+  // is refused before anything is written.
+  write("two.json", R"({"suite": "two", "base": {"image.width": 16, "image.height": 8},
+    "methods": ["basic", "full"], "terms": ["sky", "all"], "flicker": {"frames": 0},
+    "cases": [{"name": "fine", "set": {}}]})");
+  expect_invalid(run("validate two.json -o none --method fulll"), {"--method", "fulll", "basic"});
+  expect_invalid(run("validate two.json -o none --term sun"), {"--term", "sun", "sky, all"});
+  EXPECT_FALSE(fs::exists(dir_ / "none"));
+  const Result narrowed = run("validate two.json -o narrowed --method full --term sky");
+  ASSERT_EQ(narrowed.status, 0) << narrowed.err;
+  std::ifstream narrowed_in(dir_ / "narrowed" / "results.json");
+  const auto narrowed_results = nlohmann::json::parse(narrowed_in);
+  const auto& methods = narrowed_results["cases"][0]["methods"];
+  ASSERT_EQ(methods.size(), 1u);
+  EXPECT_EQ(methods[0]["name"], "full");
+  ASSERT_EQ(methods[0]["terms"].size(), 1u);
+  EXPECT_EQ(methods[0]["terms"][0]["term"], "sky");
 }
 
 // --resume keeps the cases of the report in the folder that were run with the same inputs and

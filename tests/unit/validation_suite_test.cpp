@@ -292,6 +292,56 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
   EXPECT_EQ(case_fingerprint(timed, timed.cases[0], env), a);
 }
 
+// thalassa validate --method / --term: the suite narrowed to some methods and terms keeps its
+// reference (every metric needs it), the cases' method lists and flicker follow, and a name the
+// suite does not have is refused naming the option and what it has.
+TEST(ValidationSuite, NarrowingKeepsTheReferenceAndRefusesUnknownNames) {
+  Suite suite = load_suite_text(R"({"suite": "n", "base": {"image.width": 16, "image.height": 8},
+    "methods": ["reference", "basic", "full",
+                {"name": "full_waves30", "method": "full", "set": {"ocean.waves": 30},
+                 "own_reference": true}],
+    "terms": ["sun", "sky", "all"], "flicker": {"frames": 2, "terms": ["sky", "all"]},
+    "cases": [{"name": "a", "set": {}},
+              {"name": "b", "set": {}, "methods": ["reference", "basic", "full_waves30"]}]})",
+                                "n.json");
+  Suite narrowed = suite;
+  narrow_suite(narrowed, {"full", "full_waves30"}, {"sun", "all"});
+  std::vector<std::string> names;
+  for (const SuiteMethod& m : narrowed.methods) names.push_back(m.name);
+  EXPECT_EQ(names, (std::vector<std::string>{"reference", "full", "full_waves30"}));
+  EXPECT_EQ(narrowed.cases[0].methods,
+            (std::vector<std::string>{"reference", "full", "full_waves30"}));
+  EXPECT_EQ(narrowed.cases[1].methods, (std::vector<std::string>{"reference", "full_waves30"}));
+  EXPECT_EQ(narrowed.terms, (std::vector<std::string>{"sun", "all"}));
+  EXPECT_EQ(narrowed.flicker.terms, (std::vector<std::string>{"all"}));
+  // A narrowed case measures something else: its fingerprint differs.
+  EXPECT_NE(case_fingerprint(narrowed, narrowed.cases[0], "e"),
+            case_fingerprint(suite, suite.cases[0], "e"));
+
+  Suite untouched = suite;
+  narrow_suite(untouched, {}, {});
+  EXPECT_EQ(case_fingerprint(untouched, untouched.cases[0], "e"),
+            case_fingerprint(suite, suite.cases[0], "e"));
+  Suite no_flicker = suite;
+  narrow_suite(no_flicker, {}, {"sun"});
+  EXPECT_TRUE(no_flicker.flicker.terms.empty());
+
+  const auto message = [&](const std::vector<std::string>& methods,
+                           const std::vector<std::string>& terms) -> std::string {
+    Suite s = suite;
+    try {
+      narrow_suite(s, methods, terms);
+    } catch (const SuiteError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(message({"ful"}, {}),
+            "--method: expected a method of n.json (reference, basic, full, full_waves30), got "
+            "\"ful\"");
+  EXPECT_EQ(message({}, {"sea"}), "--term: expected a term of n.json (sun, sky, all), got \"sea\"");
+}
+
 TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
   const std::string ok_case = R"({"name": "a", "set": {}})";
   const struct {

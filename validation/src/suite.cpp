@@ -497,6 +497,39 @@ Suite load_suite_file(const std::string& path) {
 
 Suite default_suite() { return load_suite_text(default_suite_json(), "default suite"); }
 
+void narrow_suite(Suite& suite, const std::vector<std::string>& methods,
+                  const std::vector<std::string>& terms) {
+  const auto listed = [](const std::vector<std::string>& names, const std::string& name) {
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  const auto refuse = [&](std::string_view option, std::string_view what,
+                          const std::vector<std::string>& have, const std::string& got) {
+    std::string names;
+    for (const std::string& n : have) names += (names.empty() ? "" : ", ") + n;
+    throw SuiteError(std::string(option) + ": expected " + std::string(what) + " of " +
+                     suite.source + " (" + names + "), got \"" + got + "\"");
+  };
+  if (!methods.empty()) {
+    std::vector<std::string> have;
+    for (const SuiteMethod& m : suite.methods) have.push_back(m.name);
+    for (const std::string& name : methods)
+      if (!listed(have, name)) refuse("--method", "a method", have, name);
+    const SuiteMethod* reference = suite.reference_method();
+    const std::string reference_name = reference ? reference->name : "";
+    std::erase_if(suite.methods, [&](const SuiteMethod& m) {
+      return m.name != reference_name && !listed(methods, m.name);
+    });
+    for (SuiteCase& c : suite.cases)
+      std::erase_if(c.methods, [&](const std::string& name) { return !suite.find_method(name); });
+  }
+  if (!terms.empty()) {
+    for (const std::string& term : terms)
+      if (!listed(suite.terms, term)) refuse("--term", "a term", suite.terms, term);
+    std::erase_if(suite.terms, [&](const std::string& t) { return !listed(terms, t); });
+    std::erase_if(suite.flicker.terms, [&](const std::string& t) { return !listed(terms, t); });
+  }
+}
+
 std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c,
                                           const SuiteMethod* method) {
   std::vector<std::string> out;

@@ -170,6 +170,16 @@ Suite load_suite_file(const std::string& path);
 Suite default_suite();
 std::string_view default_suite_json();
 
+// Narrows `suite` to some of its methods and terms, as `thalassa validate --method` and
+// `--term` ask: `methods` names methods (or variants) of the suite, `terms` terms of its
+// `terms`; an empty list keeps them all. The reference method, which every metric compares with,
+// is kept whether named or not (and a kept variant with own_reference still gets its own), the
+// cases' method lists keep the kept methods in the suite's order, and flicker keeps the kept
+// terms it measured (none left: no flicker). A name or term the suite does not have is a
+// SuiteError naming the option: a misspelt name would otherwise run less than asked and pass.
+void narrow_suite(Suite& suite, const std::vector<std::string>& methods,
+                  const std::vector<std::string>& terms);
+
 // The --set assignments of a case rendered with `method` (null: the case's own scene): the
 // suite's base, the case's set, then the method's set.
 std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c,
