@@ -27,6 +27,8 @@ class SkyNode final : public gl::Node {
                        float(disc.y), float(disc.z));
     glProgramUniform1f(program, glGetUniformLocation(program, "sun_cos_angular_radius"),
                        float(std::cos(provider_->sun_angular_radius())));
+    glProgramUniform1f(program, glGetUniformLocation(program, "sun_angular_radius"),
+                       float(provider_->sun_angular_radius()));
     glUseProgram(program);
     provider_->bind();
     // The sky lies at infinity: nothing drawn later can be hidden by it.

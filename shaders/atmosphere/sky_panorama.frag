@@ -23,7 +23,6 @@ uniform vec2 panorama_size;        // texels: width, height = width / 2
 // radius against 0.18 deg per texel at 2048, 5.6 at 64) lights the texels it covers in
 // proportion rather than all or none.
 const int SUN_DISC_POINTS = 256;
-const float GOLDEN_ANGLE = 2.39996323;  // rad, pi (3 - sqrt(5))
 
 // The unit ENU direction at window position p (pixels).
 vec3 PanoramaDirection(vec2 p) {

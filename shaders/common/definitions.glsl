@@ -32,6 +32,8 @@
 #endif  // THALASSA_CPP
 
 const Number PI = 3.14159265358979323846;
+// rad, pi (3 - sqrt(5)): consecutive points of a sunflower spiral spread evenly over a disc.
+const Number GOLDEN_ANGLE = 2.39996322972865332;
 
 // Radians per degree: `30.0 * DEGREE` is 30 degrees in radians.
 const Number DEGREE = PI / 180.0;
