@@ -475,8 +475,9 @@ int run_validate(const ValidateArgs& args) {
   }
 
   // 2. Every case: run, or with --resume kept from the earlier report where it was run with the
-  // same inputs (case_fingerprint) and its images are still there. The report is rewritten after
-  // each case, so that a run cut short leaves the cases it finished (and --resume goes on).
+  // same inputs (case_fingerprint), ended as it expected and its images are still there. The report
+  // is rewritten after each case, so that a run cut short leaves the cases it finished (and
+  // --resume goes on).
   std::unique_ptr<GlContext> context = open_context(args.backend);
   validation::Report report;
   report.suite = suite.name;
@@ -499,8 +500,10 @@ int run_validate(const ValidateArgs& args) {
     const SuiteCase& c = suite.cases[i];
     fingerprints.push_back(validation::case_fingerprint(suite, c, environment));
     const auto found = earlier.find(c.name);
+    // A case that did not end as it expected (a run-time failure: a shader that did not build,
+    // a driver error) is rendered again: its inputs may be the same, its result is not one.
     const bool keep = found != earlier.end() && found->second.fingerprint == fingerprints.back() &&
-                      images_present(found->second, args.dir);
+                      found->second.passed() && images_present(found->second, args.dir);
     kept.push_back(keep ? &found->second : nullptr);
     if (selected[i])
       steps += keep ? 1 + retime_count(suite, found->second) : render_count(suite, c);

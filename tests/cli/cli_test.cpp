@@ -489,6 +489,24 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
   EXPECT_EQ(read_results()["cases"], both["cases"]);
   EXPECT_EQ(fs::last_write_time(a_image), a_time);
 
+  // A case that failed at run time (here its report says so) is rendered again, though its
+  // inputs are the same: a shader that did not build must not stay in the report.
+  {
+    auto failed = both;
+    failed["cases"][1]["exit_status"] = 1;
+    failed["cases"][1]["message"] = "shader compile failed";
+    failed["cases"][1]["passed"] = false;
+    std::ofstream out(dir_ / "out" / "results.json");
+    out << failed.dump();
+  }
+  const Result rerun = run("validate s.json -o out --resume");
+  ASSERT_EQ(rerun.status, 0) << rerun.err;
+  const auto mended = read_results();
+  EXPECT_EQ(mended["cases"][0], first["cases"][0]);
+  EXPECT_EQ(mended["cases"][1]["exit_status"], 0);
+  EXPECT_EQ(mended["cases"][1]["passed"], true);
+  EXPECT_EQ(fs::last_write_time(a_image), a_time);
+
   // Case b's sea changed: b is rendered again, a is kept.
   write("s.json", suite("12"));
   ASSERT_EQ(run("validate s.json -o out --resume").status, 0);

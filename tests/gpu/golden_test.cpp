@@ -154,10 +154,9 @@ TEST(Orientation, SunDiscKeepsItsEnergyAtEveryResolution) {
   const CameraBasis b = camera_basis(180, 15, 0);
   std::vector<double> energies;
   for (const auto& [width, height] : {std::pair{36, 20}, std::pair{100, 56}, std::pair{720, 400}}) {
-    const Scene scene = test::scene_from(
-        R"({"image": {"width": )" + std::to_string(width) + R"(, "height": )" +
-        std::to_string(height) +
-        R"(}, "camera": {"heading": 180, "pitch": 15, "fov_y": 20},
+    const Scene scene = test::scene_from(R"({"image": {"width": )" + std::to_string(width) +
+                                         R"(, "height": )" + std::to_string(height) +
+                                         R"(}, "camera": {"heading": 180, "pitch": 15, "fov_y": 20},
             "sun": {"zenith": 75, "azimuth": 180}})");
     Renderer renderer(*context, scene);
     renderer.render();
@@ -180,8 +179,8 @@ TEST(Orientation, SunDiscKeepsItsEnergyAtEveryResolution) {
   EXPECT_GT(energies[2], 0.0);
   // 36x20: 1 degree a pixel (the disc a fifth of one); 100x56: 0.36 (a disc about 1.5 wide);
   // 720x400: 0.05 (10 wide).
-  const std::string all = std::to_string(energies[0]) + ", " + std::to_string(energies[1]) +
-                          ", " + std::to_string(energies[2]);
+  const std::string all = std::to_string(energies[0]) + ", " + std::to_string(energies[1]) + ", " +
+                          std::to_string(energies[2]);
   EXPECT_NEAR(energies[0] / energies[2], 1.0, 0.01) << all;
   EXPECT_NEAR(energies[1] / energies[2], 1.0, 0.01) << all;
   RecordProperty("energies", all);
