@@ -275,7 +275,7 @@ struct Renderer::Impl {
     // Each row's total luminance of the sea: its pixels' sea share, n_sea sea_mean / count. The
     // sky's samples do not count: the reference is the sea's, the sky is every method's, and
     // its supersampled sun disc alone held every reference at the most samples (a row of the
-    // low sun's disc still moved by 0.84 % at 1,024; docs/validation.md, stop 23).
+    // low sun's disc still moved by 0.84 % at 1,024; docs/validation.md, stop 22).
     auto row_totals = [&](int count) {
       std::vector<double> totals(height, 0.0);
       for (int y = 0; y < height; ++y)

@@ -259,7 +259,7 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
 // wavelength. And refining 8 x 8 with 60 waves, which on llvmpipe runs past the loop iterations
 // an invocation may run unless the scatter splits its rows into segments (docs/validation.md,
 // stop 22: rows came out 20-70 % dark or 10 times too bright), gives what 4 x 4 gives at the same
-// effective density. Measured (stop 23, rows' worst change): 4 x 4 against 16 x 1 0.030, 8 x 2
+// effective density. Measured (stop 22, rows' worst change): 4 x 4 against 16 x 1 0.030, 8 x 2
 // 0.033 (each 0.055-0.072 from 32 x 1, about 16 x 1's own 0.065); bases of half a wavelength do
 // not hold (2 x 8 against 16 x 1 0.12, 2 x 4 against 8 x 1 0.14: a base cell alone decides which
 // pixel sees its subcells and whether the grid hides them); 4 x 8 against 8 x 4 0.018.

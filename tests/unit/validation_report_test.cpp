@@ -436,21 +436,26 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   add_case("far", 8000.0, 0.2, 0.3, 0.25);
   add_case("dark", 1000.0, nan, nan, 0.4);
   add_case("same", 1000.0, 0.2, 0.125, 0.125);
+  // The reference's own rows moved by up to 2 % at its last doubling: full's 0.01 lead is not
+  // resolved. (Its lattice counts for the terms with the sun only.)
+  add_case("close", 1000.0, 0.2, 0.1, 0.11);
+  report.cases.back().methods[0].convergence = {{"sky", 0.02}};
+  report.cases.back().methods[0].lattice_convergence = {{"sun", 0.5}};
   const std::vector<SummaryLine> lines = summarize(report);
   ASSERT_EQ(lines.size(), 2u);  // basic and full, sky; no line for the reference
   EXPECT_EQ(lines[0].method, "basic");
   const SummaryLine& full = lines[1];
   EXPECT_EQ(full.method, "full");
   EXPECT_EQ(full.term, "sky");
-  EXPECT_EQ(full.cases, 5);
-  EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2, 0.2 (undefined out)
+  EXPECT_EQ(full.cases, 6);
+  EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2, 0.2, 0.2 (undefined out)
   EXPECT_DOUBLE_EQ(full.worst_relative_l1, 0.3);
-  EXPECT_DOUBLE_EQ(full.median_row_error, 0.5 * (0.125 + 0.3));  // of 0.9, 0.05, 0.3, 0.125
+  EXPECT_DOUBLE_EQ(full.median_row_error, 0.125);  // of 0.9, 0.05, 0.3, 0.125, 0.1
   EXPECT_DOUBLE_EQ(full.worst_row_error, 0.9);
-  EXPECT_DOUBLE_EQ(full.median_frame_ms, 1000.0);  // of 4, 100, 1000, 1000, 8000
+  EXPECT_DOUBLE_EQ(full.median_frame_ms, 1000.0);  // of 4, 100, 1000, 1000, 1000, 8000
   EXPECT_DOUBLE_EQ(lines[0].median_relative_l1, 0.5);
   const std::vector<ClaimLine> claim = fig10_claim(report);
-  ASSERT_EQ(claim.size(), 4u);
+  ASSERT_EQ(claim.size(), 5u);
   EXPECT_EQ(claim[0].case_name, "mid");
   EXPECT_TRUE(claim[0].holds());
   EXPECT_EQ(claim[0].verdict(), "closer");
@@ -463,14 +468,24 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   EXPECT_TRUE(claim[3].same());
   EXPECT_FALSE(claim[3].holds());
   EXPECT_EQ(claim[3].verdict(), "same");
+  EXPECT_DOUBLE_EQ(claim[4].uncertainty, 0.02);
+  EXPECT_TRUE(claim[4].indistinct());
+  EXPECT_FALSE(claim[4].holds());
+  EXPECT_EQ(claim[4].verdict(), "indistinct");
+  EXPECT_TRUE(std::isnan(claim[0].uncertainty));  // not measured: the row errors decide alone
   write_report(report, dir_.string());
   const auto csv = parse_csv(read_text(dir_ / "claim.csv"));
-  ASSERT_EQ(csv.size(), 5u);
-  EXPECT_EQ(csv[1][5], "closer");
-  EXPECT_EQ(csv[2][5], "farther");
+  ASSERT_EQ(csv.size(), 6u);
+  EXPECT_EQ(csv[0][5], "reference_uncertainty");
+  EXPECT_EQ(csv[1][6], "closer");
+  EXPECT_EQ(csv[2][6], "farther");
   EXPECT_EQ(csv[3][3], "");  // undefined: empty
-  EXPECT_EQ(csv[4][5], "same");
-  EXPECT_NE(read_text(dir_ / "index.html").find("it holds in 1 of 4 cases and terms; in 1 the two"),
+  EXPECT_EQ(csv[4][6], "same");
+  EXPECT_EQ(csv[5][6], "indistinct");
+  EXPECT_DOUBLE_EQ(std::stod(csv[5][5]), 0.02);
+  const std::string index = read_text(dir_ / "index.html");
+  EXPECT_NE(index.find("it holds in 1 of 5 cases and terms; in 1 the two"), std::string::npos);
+  EXPECT_NE(index.find("in 1 they differ by no more than the reference's own uncertainty"),
             std::string::npos);
   const std::string heights = read_text(dir_ / "plots" / "summary_sky_height.dat");
   EXPECT_NE(heights.find("\n4 0.10000000000000001 0.90000000000000002\n"), std::string::npos)

@@ -670,11 +670,11 @@ std::string summary_csv(const Report& report) {
 }
 
 std::string claim_csv(const Report& report) {
-  std::string csv =
-      csv_line({"case", "camera_height_m", "term", "full_row_error", "basic_row_error", "verdict"});
+  std::string csv = csv_line({"case", "camera_height_m", "term", "full_row_error",
+                              "basic_row_error", "reference_uncertainty", "verdict"});
   for (const ClaimLine& l : fig10_claim(report))
     csv += csv_line({l.case_name, number(l.camera_height), l.term, number(l.full), number(l.basic),
-                     l.verdict()});
+                     number(l.uncertainty), l.verdict()});
   return csv;
 }
 
@@ -705,10 +705,11 @@ std::string summary_html(const Report& report,
   h += "</table>\n";
   const std::vector<ClaimLine> claim = fig10_claim(report);
   if (!claim.empty()) {
-    int holds = 0, same = 0;
+    int holds = 0, same = 0, indistinct = 0;
     for (const ClaimLine& l : claim) {
       holds += l.holds() ? 1 : 0;
       same += l.same() ? 1 : 0;
+      indistinct += l.indistinct() ? 1 : 0;
     }
     h += "<p>Fig. 10's claim, the full method closer to the reference than the basic one with "
          "the camera at " +
@@ -718,14 +719,18 @@ std::string summary_html(const Report& report,
          std::to_string(holds) + " of " + std::to_string(claim.size()) + " cases and terms; in " +
          std::to_string(same) +
          " the two drew the same rows (the foreground resolves no wave: basic's one variance is "
-         "full's everywhere).</p>\n<table><tr><th>case</th><th>camera height (m)</th><th>term</th>"
-         "<th>full</th><th>basic</th><th>full</th></tr>\n";
+         "full's everywhere), in " +
+         std::to_string(indistinct) +
+         " they differ by no more than the reference's own uncertainty (its last doubling's "
+         "largest row change, of the samples and, with the sun, of its lattice).</p>\n"
+         "<table><tr><th>case</th><th>camera height (m)</th><th>term</th><th>full</th>"
+         "<th>basic</th><th>reference's uncertainty</th><th>full</th></tr>\n";
     for (const ClaimLine& l : claim)
       h += "<tr><td class=\"t\"><a href=\"#" + html(l.case_name) + "\">" + html(l.case_name) +
            "</a></td><td>" + short_number(l.camera_height) + "</td><td class=\"t\">" +
            html(l.term) + "</td><td>" + short_number(l.full) + "</td><td>" + short_number(l.basic) +
-           "</td><td" + (l.holds() || l.same() ? ">" : " class=\"fail\">") + l.verdict() +
-           "</td></tr>\n";
+           "</td><td>" + short_number(l.uncertainty) + "</td><td" +
+           (l.verdict() == "farther" ? " class=\"fail\">" : ">") + l.verdict() + "</td></tr>\n";
     h += "</table>\n";
   }
   h += "<p>";
@@ -942,8 +947,30 @@ std::vector<SummaryLine> summarize(const Report& report) {
 
 std::string ClaimLine::verdict() const {
   if (!std::isfinite(full) || !std::isfinite(basic)) return "undefined";
-  return full < basic ? "closer" : full == basic ? "same" : "farther";
+  if (same()) return "same";
+  if (indistinct()) return "indistinct";
+  return full < basic ? "closer" : "farther";
 }
+
+namespace {
+// The case's reference's uncertainty for `term` (ClaimLine::uncertainty); NaN: not measured.
+double reference_uncertainty(const CaseResult& c, const std::string& term) {
+  const MethodResult* reference = nullptr;
+  for (const MethodResult& m : c.methods)
+    if (m.method == "reference" && m.reference.empty()) reference = &m;
+  if (!reference) return kNaN;
+  double u = kNaN;
+  const auto take = [&](double v) {
+    if (std::isfinite(v)) u = std::isfinite(u) ? std::max(u, v) : v;
+  };
+  for (const auto& [t, change] : reference->convergence)
+    if (t == term) take(change);
+  // One lattice for every term with the sun (measured on the first of them).
+  if (term == "sun" || term == "all")
+    for (const auto& [t, change] : reference->lattice_convergence) take(change);
+  return u;
+}
+}  // namespace
 
 std::vector<ClaimLine> fig10_claim(const Report& report) {
   std::vector<ClaimLine> lines;
@@ -959,7 +986,8 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
                        .camera_height = c.camera_height,
                        .term = f.term,
                        .full = f.metrics.row_error,
-                       .basic = b->metrics.row_error});
+                       .basic = b->metrics.row_error,
+                       .uncertainty = reference_uncertainty(c, f.term)});
     }
   }
   return lines;
@@ -1160,7 +1188,7 @@ Report report_from_json(const std::string& json_text) {
                             get_number(jb.at("reference_mean"))});
         t.metrics.row_totals = rows_from(jt.at("rows").at("total"));
         t.metrics.row_ratios = rows_from(jt.at("rows").at("ratio"));
-        // A report written before stop 23 has no mean: it is its rows' (metrics.hpp).
+        // A report written before stop 22 has no mean: it is its rows' (metrics.hpp).
         t.metrics.mean_row_deviation = jt.contains("mean_row_deviation")
                                            ? get_number(jt.at("mean_row_deviation"))
                                            : mean_row_deviation(t.metrics.row_ratios);
@@ -1172,7 +1200,7 @@ Report report_from_json(const std::string& json_text) {
       }
       c.methods.push_back(std::move(m));
     }
-    // A report written before stop 23 has no row error: it is the rows' against those of the
+    // A report written before stop 22 has no row error: it is the rows' against those of the
     // reference each method was measured against, which the report holds.
     for (const auto& [mi, ti] : without_row_error) {
       const MethodResult& m = c.methods[mi];

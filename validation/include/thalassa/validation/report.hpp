@@ -9,6 +9,8 @@
 // (exit status 1), never a silent skip.
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -63,7 +65,7 @@ struct MethodResult {
   // The reference only, per term with the sun: the image rows of the sea (rows with a pixel of
   // the sea mask) where its sun resolved every wave (RenderStats::resolved_rows >=
   // kResolvedRowFraction); the other methods are compared with it on those rows only, for that
-  // term. Before stop 23 the rows of sky alone were counted too.
+  // term. Before stop 22 the rows of sky alone were counted too.
   std::vector<std::pair<std::string, int>> resolved_rows;
 };
 
@@ -125,20 +127,33 @@ std::vector<SummaryLine> summarize(const Report& report);
 // Fig. 10's claim (Bruneton et al. 2010; issue 6, point 5): at every distance beyond
 // kClaimMinHeight the full method is closer to the reference than the basic one. Per case with
 // the camera at or above that height and per term: the row error (TermMetrics::row_error, the
-// energy per distance) of `full` and of `basic` and whether full's is the smaller. Cases
-// without both methods measured are left out.
+// energy per distance) of `full` and of `basic`, and the reference's own uncertainty, against
+// which their difference is judged. Cases without both methods measured are left out.
 inline constexpr double kClaimMinHeight = 100.0;  // m, the issue's "beyond 100 m"
 struct ClaimLine {
   std::string case_name;
   double camera_height = 0.0;  // m
   std::string term;
   double full = 0.0, basic = 0.0;  // row errors (NaN: no row defined)
-  // full < basic; false where either is undefined or they are equal.
-  bool holds() const { return full < basic; }
+  // The case's reference's own: the largest relative change of a row's total at its last
+  // doubling of the samples (MethodResult::convergence) and, for a term with the sun, of its
+  // sun's lattice against one of half the cells (MethodResult::lattice_convergence), whichever
+  // is larger. Either row error moves by at most this much with the reference's own error, so a
+  // difference within it is not resolved by the reference. NaN: not measured (taken as 0).
+  double uncertainty = std::numeric_limits<double>::quiet_NaN();
+  // The smaller difference the reference resolves: the uncertainty, 0 where not measured.
+  double resolved() const { return std::isfinite(uncertainty) ? uncertainty : 0.0; }
+  // full < basic by more than the reference's uncertainty; false where either is undefined.
+  bool holds() const { return full < basic - resolved(); }
   // The two drew the same rows: where the foreground's pixels already leave every wave
   // unresolved, basic's one slope variance is full's everywhere and the images are the same.
   bool same() const { return full == basic; }
-  // "closer", "same", "farther" or "undefined" (either is).
+  // They differ, by no more than the reference's uncertainty.
+  bool indistinct() const {
+    return std::isfinite(full) && std::isfinite(basic) && !same() &&
+           std::abs(full - basic) <= resolved();
+  }
+  // "closer", "indistinct", "same", "farther" or "undefined" (either is).
   std::string verdict() const;
 };
 std::vector<ClaimLine> fig10_claim(const Report& report);
