@@ -490,6 +490,10 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   const std::string heights = read_text(dir_ / "plots" / "summary_sky_height.dat");
   EXPECT_NE(heights.find("\n4 0.10000000000000001 0.90000000000000002\n"), std::string::npos)
       << heights;
+  // Each method keeps the colour the rows plots give it, where the reference is line type 1.
+  const std::string script = read_text(dir_ / "plots" / "summary_sky_height.gp");
+  EXPECT_NE(script.find("lt 2 title 'basic'"), std::string::npos) << script;
+  EXPECT_NE(script.find("lt 3 title 'full'"), std::string::npos) << script;
 }
 
 // No row compared anywhere (the reference's sun resolved none): gnuplot refuses a plot of no

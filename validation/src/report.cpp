@@ -487,10 +487,15 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
                                 const Report& report, const std::string& term,
                                 const ReportOptions& options) {
   std::vector<std::string> methods;
+  // Every plain method in the cases' order, the reference included: a method's line type is its
+  // place here, as on the rows plots (rows_plot), so that it keeps its colour across the report.
+  std::vector<std::string> order;
   std::vector<double> heights;
   for (const CaseResult& c : report.cases)
     for (const MethodResult& m : c.methods) {
-      if (!m.plain || m.method == "reference") continue;
+      if (!m.plain) continue;
+      if (std::find(order.begin(), order.end(), m.name) == order.end()) order.push_back(m.name);
+      if (m.method == "reference") continue;
       const TermResult* t = term_of(m, term);
       if (!t || !measured(*t)) continue;
       if (std::find(methods.begin(), methods.end(), m.name) == methods.end())
@@ -532,9 +537,11 @@ std::string summary_height_plot(const std::string& gnuplot, const fs::path& plot
               number(heights.back() * 2) + "]\n";
   script += "plot ";
   for (std::size_t i = 0; i < methods.size(); ++i)
-    script += std::string(i ? ", " : "") + "'" + name + ".dat' using 1:" + std::to_string(2 + i) +
-              " with linespoints lw 2 pt 7 lt " + std::to_string(i + 1) + " title '" + methods[i] +
-              "'";
+    script +=
+        std::string(i ? ", " : "") + "'" + name + ".dat' using 1:" + std::to_string(2 + i) +
+        " with linespoints lw 2 pt 7 lt " +
+        std::to_string(std::find(order.begin(), order.end(), methods[i]) - order.begin() + 1) +
+        " title '" + methods[i] + "'";
   script += "\n";
   return draw(gnuplot, plots, name, data, script, options);
 }
