@@ -55,6 +55,11 @@ class Cli : public ::testing::Test {
   void write(const std::string& name, const std::string& text) {
     std::ofstream(dir_ / name) << text;
   }
+  // The JSON file at `name` in dir_ (a report's results.json, a --stats file).
+  nlohmann::json read_json(const std::string& name) const {
+    std::ifstream in(dir_ / name);
+    return nlohmann::json::parse(in);
+  }
   std::vector<std::string> files() const {
     std::vector<std::string> names;
     for (const auto& entry : fs::directory_iterator(dir_)) names.push_back(entry.path().filename());
@@ -411,8 +416,7 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   EXPECT_FALSE(fs::exists(dir_ / "none"));
   const Result r = run("validate part.json -o out --case 'bad_*'");
   ASSERT_EQ(r.status, 0) << r.err;
-  std::ifstream in(dir_ / "out" / "results.json");
-  const auto results = nlohmann::json::parse(in);
+  const auto results = read_json("out/results.json");
   EXPECT_EQ(results["suite_cases"], 3);
   ASSERT_EQ(results["cases"].size(), 2u);
   EXPECT_EQ(results["cases"][0]["name"], "bad_lat");
@@ -433,8 +437,7 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   EXPECT_FALSE(fs::exists(dir_ / "none"));
   const Result narrowed = run("validate two.json -o narrowed --method full --term sky");
   ASSERT_EQ(narrowed.status, 0) << narrowed.err;
-  std::ifstream narrowed_in(dir_ / "narrowed" / "results.json");
-  const auto narrowed_results = nlohmann::json::parse(narrowed_in);
+  const auto narrowed_results = read_json("narrowed/results.json");
   const auto& methods = narrowed_results["cases"][0]["methods"];
   ASSERT_EQ(methods.size(), 1u);
   EXPECT_EQ(methods[0]["name"], "full");
@@ -457,10 +460,7 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
   };
   write("s.json", suite("8"));
   ASSERT_EQ(run("validate s.json -o out --case a").status, 0);
-  const auto read_results = [&] {
-    std::ifstream in(dir_ / "out" / "results.json");
-    return nlohmann::json::parse(in);
-  };
+  const auto read_results = [&] { return read_json("out/results.json"); };
   const auto first = read_results();
   ASSERT_EQ(first["cases"].size(), 1u);
   const std::string fingerprint_a = first["cases"][0]["fingerprint"];
@@ -546,10 +546,7 @@ TEST_F(Cli, ValidateTimesTheMethodsApartAndRetimesAResumedCase) {
   const Result r = run("validate t.json -o out");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.err.find("full, timed at 48x32"), std::string::npos) << r.err;
-  const auto read_results = [&] {
-    std::ifstream in(dir_ / "out" / "results.json");
-    return nlohmann::json::parse(in);
-  };
+  const auto read_results = [&] { return read_json("out/results.json"); };
   const auto first = read_results();
   EXPECT_EQ(first["timing"]["width"], 48);
   const auto& c = first["cases"][0];

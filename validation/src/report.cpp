@@ -962,9 +962,7 @@ std::string ClaimLine::verdict() const {
 namespace {
 // The case's reference's uncertainty for `term` (ClaimLine::uncertainty); NaN: not measured.
 double reference_uncertainty(const CaseResult& c, const std::string& term) {
-  const MethodResult* reference = nullptr;
-  for (const MethodResult& m : c.methods)
-    if (m.method == "reference" && m.reference.empty()) reference = &m;
+  const MethodResult* reference = reference_of(c);
   if (!reference) return kNaN;
   double u = kNaN;
   const auto take = [&](double v) {
