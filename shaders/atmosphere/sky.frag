@@ -43,7 +43,10 @@ float SunDiscCoverage(vec2 frag_coord, vec3 view, vec3 sun) {
   // square's half diagonal (an angle at most its size on the axis).
   const float reach = sun_angular_radius + 0.75 * side * max(pixel_size.x, pixel_size.y);
   if (length(view - sun) > reach) return 0.0;
-  const float disc_solid_angle = 2.0 * PI * (1.0 - cos(sun_angular_radius));
+  // 2 pi (1 - cos r), written without the cancellation of 1 - cos r in float (0.5 % at the
+  // sun's 4.65e-3 rad).
+  const float half_radius_sine = sin(0.5 * sun_angular_radius);
+  const float disc_solid_angle = 4.0 * PI * half_radius_sine * half_radius_sine;
   if (4.0 * square_solid_angle <= disc_solid_angle) {
     int inside = 0;
     for (int i = 0; i < SUN_COVERAGE_SIDE; ++i)

@@ -144,7 +144,7 @@ TEST(Orientation, SunDiscIsUpperRightWhereTheCameraPutsIt) {
 // The sun's disc keeps its energy at every resolution: sky.frag draws the share of each pixel
 // the 0.53-degree disc covers, so that summed over the pixels near the sun, radiance times each
 // pixel's solid angle is the disc's L T Omega whether the disc spans ten pixels or a fifth of
-// one (measured: 1.1238, 1.1243 and 1.1265 W m^-2 nm^-1 at 36x20, 100x56 and 720x400). Testing
+// one (measured: 1.1264, 1.1269 and 1.1265 W m^-2 nm^-1 at 36x20, 100x56 and 720x400). Testing
 // the pixel's centre alone drew a disc of about a pixel as the pixels whose centres it covered
 // (2.3 times its energy at 100x56) and a smaller one not at all (0.05 % of it at 36x20). The
 // window of 2 degrees around the sun holds a few tenths of a per cent of sky besides the disc.
