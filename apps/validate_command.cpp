@@ -234,7 +234,8 @@ class CaseRunner {
               view.sea_mask(), ref->second.stats.resolved_rows, validation::kResolvedRowFraction);
           const std::vector<Image>& against = ref->second.compared;
           t.metrics = validation::compare_images(rendered.compared.front(), against.front(), view,
-                                                 suite_.horizon, &compared);
+                                                 suite_.horizon, &compared,
+                                                 png_black_level(scene.image.exposure));
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
             if (against.size() == rendered.frames.size())

@@ -80,6 +80,14 @@ double srgb_encode(double linear) {
   return x <= kSrgbLinearThreshold ? kSrgbLinearSlope * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055;
 }
 
+double png_black_level(double exposure) {
+  if (!(exposure > 0.0)) return 0.0;
+  // Inverts tone_map: the encoded value, then the sRGB curve's linear segment (the value lies
+  // far below kSrgbLinearThreshold), then 1 - exp(-exposure L).
+  constexpr double kSmallestVisibleEncoded = 0.5 / 64.0 / 255.0;
+  return -std::log1p(-kSmallestVisibleEncoded / kSrgbLinearSlope) / exposure;
+}
+
 double tone_map(double radiance, double exposure) {
   if (!std::isfinite(radiance) || radiance <= 0.0 || !(exposure > 0.0)) return 0.0;
   return srgb_encode(-std::expm1(-exposure * radiance));

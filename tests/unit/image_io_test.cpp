@@ -85,6 +85,23 @@ TEST(ToneMap, DocumentedOperator) {
   for (double l = 0.001; l < 1; l *= 1.5) EXPECT_LT(tone_map(l, 10), tone_map(l * 1.5, 10));
 }
 
+TEST(ToneMap, BlackLevelIsTheLargestRadianceEveryDitherPositionShowsAsZero) {
+  for (double exposure : {1e-3, 1.0, 10.0, 1e6}) {
+    const double black = png_black_level(exposure);
+    ASSERT_GT(black, 0.0);
+    int below = 0, above = 0;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) {
+        below += quantize_8bit(tone_map(black * (1.0 - 1e-6), exposure), x, y);
+        above += quantize_8bit(tone_map(black * (1.0 + 1e-6), exposure), x, y);
+      }
+    EXPECT_EQ(below, 0) << exposure;  // black at every one of the 64 dither positions
+    EXPECT_EQ(above, 1) << exposure;  // the largest threshold lets one of them show a step
+  }
+  EXPECT_EQ(png_black_level(0.0), 0.0);
+  EXPECT_EQ(png_black_level(std::nan("")), 0.0);
+}
+
 TEST_F(ImageIo, PngIsToneMappedAndUpright) {
   Image image{2, 2, std::vector<float>(16, 0.0f)};
   image.pixel(0, 0)[0] = 0.05f;  // top-left red

@@ -179,7 +179,8 @@ TEST(ValidationMetrics, MeanRowDeviationAveragesTheDefinedRows) {
   EXPECT_NEAR(max_row_deviation(ratios), 0.75, 1e-15);
   EXPECT_TRUE(std::isnan(mean_row_deviation({{nan, nan, nan, nan}})));
   EXPECT_TRUE(std::isnan(mean_row_deviation({})));
-  EXPECT_EQ(max_row_deviation({}), 0.0);
+  EXPECT_TRUE(std::isnan(max_row_deviation({})));
+  EXPECT_TRUE(std::isnan(max_row_deviation({{nan, nan, nan, nan}})));
 }
 
 // The row error weighs each row by the reference's energy, over the defined rows only: a faint
@@ -208,6 +209,56 @@ TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethod
   EXPECT_TRUE(std::isnan(e.relative_l1.l));
   EXPECT_TRUE(std::isnan(e.relative_rms.l));
   EXPECT_DOUBLE_EQ(e.mean_abs.l, 0.125);  // 0.5 over 4 pixels, defined
+}
+
+// A reference term that no compared pixel shows in its PNG (the sun's Gaussian tail where the
+// sea reflects no glint into the view: 1e-25 against the methods' 1e-7) has no relative error,
+// row ratio or row error: their ratio of two invisible tails read 3e17 in stop 22's report.
+TEST(ValidationMetrics, AReferenceBelowTheBlackLevelHasNoRelativeErrors) {
+  const Scene scene = view_scene(64, 48);
+  const ViewGeometry view(scene);
+  const double black = png_black_level(scene.image.exposure);
+  const Image tail = scaled(random_image(64, 48, 5), static_cast<float>(1e-18 * black));
+  const Image faint = scaled(random_image(64, 48, 6), static_cast<float>(0.9 * black));
+  const Image lit = random_image(64, 48, 7);
+  const Image one_glint = [&] {
+    Image image = tail;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x)
+        if (view.sea_mask()(x, y)) {
+          image.pixel(x, y)[1] = static_cast<float>(1.01 * black);
+          return image;
+        }
+    return image;
+  }();
+
+  // Both black: nothing a viewer sees differs (relative errors 0), and no row to compare.
+  TermMetrics m = compare_images(faint, tail, view, {}, nullptr, black);
+  EXPECT_TRUE(m.reference_black);
+  EXPECT_EQ(m.error.relative_l1.l, 0.0);
+  EXPECT_EQ(m.error.relative_rms.g, 0.0);
+  EXPECT_GT(m.error.mean_abs.l, 0.0);  // the absolute difference stays reported
+  EXPECT_TRUE(std::isnan(m.row_error));
+  EXPECT_TRUE(std::isnan(m.max_row_deviation));
+  EXPECT_TRUE(std::isnan(m.mean_row_deviation));
+  for (const ChannelValues& r : m.row_ratios) EXPECT_TRUE(std::isnan(r.l));
+
+  // The method visible: undefined, not 1e17.
+  m = compare_images(lit, tail, view, {}, nullptr, black);
+  EXPECT_TRUE(m.reference_black);
+  EXPECT_TRUE(std::isnan(m.error.relative_l1.l));
+  EXPECT_TRUE(std::isnan(m.error.relative_rms.b));
+
+  // One reference pixel in one channel at the black level: not black, measured as before.
+  m = compare_images(lit, one_glint, view, {}, nullptr, black);
+  EXPECT_FALSE(m.reference_black);
+  EXPECT_GT(m.error.relative_l1.l, 1e6);
+  EXPECT_TRUE(std::isfinite(m.row_error));
+
+  // Without a black level (the default) nothing is black: the tail is compared as it is.
+  m = compare_images(faint, tail, view);
+  EXPECT_FALSE(m.reference_black);
+  EXPECT_GT(m.error.relative_l1.l, 1e15);
 }
 
 // The band's pixels and their angle below the horizon against a brute-force search: for each

@@ -80,6 +80,7 @@ TermMetrics synthetic_metrics(double seed, int rows) {
     m.row_ratios.push_back(y < 3 ? ChannelValues{NAN, NAN, NAN, NAN}
                                  : ChannelValues{1.0 + t / 100, 1.0 - t / 300, 1.0 / 3.0, 0.9});
   }
+  m.reference_black = seed > 2.5;  // some terms of the report, not all
   m.max_row_deviation = seed / 100.0 + 1.0 / 3.0;
   m.mean_row_deviation = seed / 300.0 + 1.0 / 7.0;
   m.row_error = seed / 500.0 + 1.0 / 9.0;
@@ -281,6 +282,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     expect_same(csv_number(f[col["rel_l1_l"]]), t.metrics.error.relative_l1.l, what + " l1");
     expect_same(csv_number(f[col["rel_l1_b"]]), t.metrics.error.relative_l1.b, what + " l1 b");
     expect_same(csv_number(f[col["rel_rms_b"]]), t.metrics.error.relative_rms.b, what + " rms b");
+    EXPECT_EQ(f[col["reference_black"]], t.metrics.reference_black ? "1" : "0") << what;
     expect_same(csv_number(f[col["max_row_deviation"]]), t.metrics.max_row_deviation, what);
     expect_same(csv_number(f[col["mean_row_deviation"]]), t.metrics.mean_row_deviation, what);
     expect_same(csv_number(f[col["row_error"]]), t.metrics.row_error, what);
@@ -357,6 +359,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
       expect_same(x.flicker.value_or(NAN), w.flicker.value_or(NAN), what);
       expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);
       expect_same(x.metrics.error.relative_l1.l, w.metrics.error.relative_l1.l, what);
+      EXPECT_EQ(x.metrics.reference_black, w.metrics.reference_black) << what;
       expect_same(x.metrics.mean_row_deviation, w.metrics.mean_row_deviation, what);
       expect_same(x.metrics.row_error, w.metrics.row_error, what);
       expect_same(x.metrics.error.relative_rms.b, w.metrics.error.relative_rms.b, what);
@@ -441,21 +444,26 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   add_case("close", 1000.0, 0.2, 0.1, 0.11);
   report.cases.back().methods[0].convergence = {{"sky", 0.02}};
   report.cases.back().methods[0].lattice_convergence = {{"sun", 0.5}};
+  // A black reference: no row errors, and its own convergence (a ratio of invisible tails) is
+  // no uncertainty.
+  add_case("black", 8000.0, nan, nan, nan);
+  report.cases.back().methods[0].convergence = {{"sky", 2e5}};
+  for (MethodResult& m : report.cases.back().methods) m.terms[0].metrics.reference_black = true;
   const std::vector<SummaryLine> lines = summarize(report);
   ASSERT_EQ(lines.size(), 2u);  // basic and full, sky; no line for the reference
   EXPECT_EQ(lines[0].method, "basic");
   const SummaryLine& full = lines[1];
   EXPECT_EQ(full.method, "full");
   EXPECT_EQ(full.term, "sky");
-  EXPECT_EQ(full.cases, 6);
+  EXPECT_EQ(full.cases, 7);
   EXPECT_DOUBLE_EQ(full.median_relative_l1, 0.2);  // of 0.3, 0.1, 0.2, 0.2, 0.2 (undefined out)
   EXPECT_DOUBLE_EQ(full.worst_relative_l1, 0.3);
   EXPECT_DOUBLE_EQ(full.median_row_error, 0.125);  // of 0.9, 0.05, 0.3, 0.125, 0.1
   EXPECT_DOUBLE_EQ(full.worst_row_error, 0.9);
-  EXPECT_DOUBLE_EQ(full.median_frame_ms, 1000.0);  // of 4, 100, 1000, 1000, 1000, 8000
+  EXPECT_DOUBLE_EQ(full.median_frame_ms, 1000.0);  // of 4, 100, 1000, 1000, 1000, 8000, 8000
   EXPECT_DOUBLE_EQ(lines[0].median_relative_l1, 0.5);
   const std::vector<ClaimLine> claim = fig10_claim(report);
-  ASSERT_EQ(claim.size(), 5u);
+  ASSERT_EQ(claim.size(), 6u);
   EXPECT_EQ(claim[0].case_name, "mid");
   EXPECT_TRUE(claim[0].holds());
   EXPECT_EQ(claim[0].verdict(), "closer");
@@ -473,9 +481,12 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   EXPECT_FALSE(claim[4].holds());
   EXPECT_EQ(claim[4].verdict(), "indistinct");
   EXPECT_TRUE(std::isnan(claim[0].uncertainty));  // not measured: the row errors decide alone
+  EXPECT_EQ(claim[5].case_name, "black");
+  EXPECT_TRUE(std::isnan(claim[5].uncertainty));
+  EXPECT_EQ(claim[5].verdict(), "undefined");
   write_report(report, dir_.string());
   const auto csv = parse_csv(read_text(dir_ / "claim.csv"));
-  ASSERT_EQ(csv.size(), 6u);
+  ASSERT_EQ(csv.size(), 7u);
   EXPECT_EQ(csv[0][5], "reference_uncertainty");
   EXPECT_EQ(csv[1][6], "closer");
   EXPECT_EQ(csv[2][6], "farther");
@@ -484,7 +495,8 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   EXPECT_EQ(csv[5][6], "indistinct");
   EXPECT_DOUBLE_EQ(std::stod(csv[5][5]), 0.02);
   const std::string index = read_text(dir_ / "index.html");
-  EXPECT_NE(index.find("it holds in 1 of 5 cases and terms; in 1 the two"), std::string::npos);
+  EXPECT_NE(index.find("it holds in 1 of 6 cases and terms; in 1 the two"), std::string::npos);
+  EXPECT_EQ(csv[6][5], "");  // the black reference's uncertainty: not measured
   EXPECT_NE(index.find("in 1 they differ by no more than the reference's own uncertainty"),
             std::string::npos);
   const std::string heights = read_text(dir_ / "plots" / "summary_sky_height.dat");

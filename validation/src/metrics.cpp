@@ -158,10 +158,10 @@ std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
 }
 
 double max_row_deviation(const std::vector<ChannelValues>& ratios) {
-  double worst = 0.0;
+  double worst = -1.0;  // none yet
   for (const ChannelValues& r : ratios)
     if (std::isfinite(r.l)) worst = std::max(worst, std::abs(r.l - 1.0));
-  return worst;
+  return worst >= 0.0 ? worst : kNaN;
 }
 
 double mean_row_deviation(const std::vector<ChannelValues>& ratios) {
@@ -363,7 +363,8 @@ double temporal_error(std::span<const Image> method, std::span<const Image> refe
 // ---------------------------------------------------------------------------------------------
 
 TermMetrics compare_images(const Image& method, const Image& reference, const ViewGeometry& view,
-                           const HorizonBandOptions& options, const PixelMask* compared) {
+                           const HorizonBandOptions& options, const PixelMask* compared,
+                           double black_level) {
   check_same_size(method, reference, "compare_images");
   const PixelMask& mask = compared ? *compared : view.sea_mask();
   if (mask.width != method.width || mask.height != method.height)
@@ -379,6 +380,24 @@ TermMetrics compare_images(const Image& method, const Image& reference, const Vi
   m.row_error = row_error(m.row_totals, reference_totals, m.row_ratios);
   m.error = relative_errors(method, reference, mask);
   m.horizon = horizon_band(method, reference, view, options, compared);
+  const auto black = [&](const Image& image) {
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 0; x < image.width; ++x) {
+        if (!mask(x, y)) continue;
+        const float* p = image.pixel(x, y);
+        if (!(std::max({p[0], p[1], p[2]}) < black_level)) return false;
+      }
+    return true;
+  };
+  m.reference_black = black_level > 0.0 && black(reference);
+  if (m.reference_black) {
+    for (ChannelValues& r : m.row_ratios) r = {kNaN, kNaN, kNaN, kNaN};
+    m.max_row_deviation = max_row_deviation(m.row_ratios);
+    m.mean_row_deviation = kNaN;
+    m.row_error = kNaN;
+    const double relative = black(method) ? 0.0 : kNaN;
+    m.error.relative_l1 = m.error.relative_rms = {relative, relative, relative, relative};
+  }
   return m;
 }
 

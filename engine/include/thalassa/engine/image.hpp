@@ -40,6 +40,12 @@ double srgb_encode(double linear);  // [0, 1] -> [0, 1]
 // Sky and sea gradients change by less than one 8-bit step over tens of pixels; plain rounding
 // shows those steps as bands, the dither does not. Deterministic, so PNGs stay reproducible.
 unsigned char quantize_8bit(double encoded, int x, int y);
+// The radiance (W m^-2 sr^-1 nm^-1) below which write_png shows 0 wherever the pixel lies in the
+// dither: quantize_8bit gives 0 below an encoded value of 1/255 times the largest dither
+// threshold's distance from the next step, 0.5 / 64. Radiance below it is black in every PNG of
+// that exposure (2.4e-7 at the default exposure 10); the validation calls a reference term black
+// when none of its pixels reaches it (docs/validation.md). 0 for an exposure that is not > 0.
+double png_black_level(double exposure);
 
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 

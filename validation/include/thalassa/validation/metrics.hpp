@@ -116,8 +116,9 @@ inline constexpr double kSignificantRowFraction = 1e-3;
 // kSignificantRowFraction of its brightest row's.
 std::vector<ChannelValues> row_ratios(const std::vector<ChannelValues>& method,
                                       const std::vector<ChannelValues>& reference);
-// The largest |ratio - 1| of the luminance over the rows where it is defined (0 when none is):
-// one number for "each row's total within x% of the reference" (issue 6, point 1).
+// The largest |ratio - 1| of the luminance over the rows where it is defined (NaN when none is:
+// until stop 23 0, which read as a perfect match where nothing was compared): one number for
+// "each row's total within x% of the reference" (issue 6, point 1).
 double max_row_deviation(const std::vector<ChannelValues>& ratios);
 // The mean |ratio - 1| of the luminance over the rows where it is defined (NaN when none is):
 // fig. 10's comparison of the energy per distance over the whole view, which one row (a few
@@ -205,6 +206,13 @@ double temporal_error(std::span<const Image> method, std::span<const Image> refe
 // gives ratios of 1 and zero errors).
 
 struct TermMetrics {
+  // No channel of any compared pixel of the reference reaches compare_images' black level: the
+  // term shows nothing there (the 10 m/s sea seen from 8 km with the sun 50 degrees high
+  // reflects no glint into the view; its reference's sun is 1e-25 on average, the Gaussian
+  // tail of the sun's disc, the methods' 1e-7, their BRDF's). Its row ratios, row error and
+  // relative errors are then undefined (NaN), as a ratio of two invisible tails would read
+  // 1e17; the relative errors are 0 when the method is black too.
+  bool reference_black = false;
   std::vector<ChannelValues> row_totals;  // over the compared pixels, top row first (NaN: none)
   std::vector<ChannelValues> row_ratios;  // to the reference's row totals (NaN: undefined)
   double max_row_deviation = 0.0;         // of row_ratios
@@ -215,9 +223,12 @@ struct TermMetrics {
 };
 // `compared`: the pixels measured (the view's sea mask when null); the validation passes the sea
 // pixels of the rows where the reference's sun resolved every wave (resolved_rows_mask).
+// `black_level` (W m^-2 sr^-1 nm^-1): the radiance below which the reference counts as black
+// (TermMetrics::reference_black); the validation passes png_black_level of the scene's exposure,
+// 0 (the default) never calls a reference black.
 TermMetrics compare_images(const Image& method, const Image& reference, const ViewGeometry& view,
                            const HorizonBandOptions& options = {},
-                           const PixelMask* compared = nullptr);
+                           const PixelMask* compared = nullptr, double black_level = 0.0);
 
 // The pixels of `mask` in the rows whose resolved fraction (RenderStats::resolved_rows, top row
 // first) is at least min_fraction; `mask` itself when resolved_rows is empty (a reference without
