@@ -24,10 +24,14 @@ std::string stats_json(const RenderStats& stats) {
   json["method"] = stats.method;
   json["samples"] = stats.samples;
   json["sample_row_change"] = stats.sample_row_change;
+  // Per row (NaN, a row not counted, is written null).
+  if (!stats.sample_row_changes.empty()) json["sample_row_changes"] = stats.sample_row_changes;
   if (!stats.reference_sun.empty()) json["reference_sun"] = stats.reference_sun;
   if (stats.method == "reference" && stats.sun_lattice_ms > 0.0) {
     json["sun_lattice_row_change"] = stats.sun_lattice_row_change;
     json["sun_lattice_rows"] = stats.sun_lattice_rows;
+    if (!stats.sun_lattice_row_changes.empty())
+      json["sun_lattice_row_changes"] = stats.sun_lattice_row_changes;
     json["sun_lattice_ms"] = stats.sun_lattice_ms;
     json["sun_lattice_margin"] = stats.sun_lattice_margin;
     json["sun_lattice_refine"] = stats.sun_lattice_refine;

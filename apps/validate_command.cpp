@@ -177,6 +177,7 @@ class CaseRunner {
       // others draw the same lattice of the same view: the coarser one would cost them a third
       // more for the same number).
       bool lattice_measured = false;
+      std::vector<double> lattice_rows;  // its per-row changes (RenderStats), for every sun term
       for (const std::string& term : suite_.terms) {
         LightTerms terms;
         if (const std::string problem = parse_terms(validation::terms_option(term), terms);
@@ -210,8 +211,15 @@ class CaseRunner {
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
           if (measure_lattice && rendered.stats.sun_lattice_ms > 0.0) {
             m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_row_change);
+            lattice_rows = rendered.stats.sun_lattice_row_changes;
             lattice_measured = true;
           }
+          const std::vector<double> no_test;
+          const std::vector<double> u = validation::reference_row_uncertainty(
+              suite_.reference.check_convergence ? rendered.stats.sample_row_changes : no_test,
+              terms.sun ? lattice_rows : no_test, view.height());
+          if (std::any_of(u.begin(), u.end(), [](double v) { return std::isfinite(v); }))
+            m.row_uncertainty.emplace_back(term, u);
           // The rows of the sea its sun resolves (a row of sky alone counts as resolved in
           // RenderStats::resolved_rows, and is never compared).
           const std::vector<double>& rows = rendered.stats.resolved_rows;

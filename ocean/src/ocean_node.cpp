@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -285,6 +286,11 @@ class OceanNode final : public gl::Node {
             {"reference_sun.hidden_fraction", hidden_fraction_},
             {"reference_sun.margin_px", double(scatter_margin_)},
             {"reference_sun.refine", double(scatter_refine_)}};
+  }
+
+  std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
+    if (!reference_sun_scatter() || scatter_ms_ < 0.0 || lattice_row_changes_.empty()) return {};
+    return {{"reference_sun.lattice_row_changes", lattice_row_changes_}};
   }
 
  private:
@@ -594,15 +600,17 @@ class OceanNode final : public gl::Node {
     hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
     lattice_row_change_ = 0.0;
     lattice_rows_ = 0;
+    lattice_row_changes_.clear();
     if (measure) {
       const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
       const double brightest =
           fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
+      lattice_row_changes_.assign(fine.total.size(), std::numeric_limits<double>::quiet_NaN());
       for (std::size_t y = 0; y < fine.total.size(); ++y)
         if (coarse.resolved[y] >= kScatterResolvedRow &&
             fine.total[y] > kScatterNegligibleRow * brightest) {
-          lattice_row_change_ = std::max(lattice_row_change_,
-                                         std::abs(fine.total[y] - coarse.total[y]) / fine.total[y]);
+          lattice_row_changes_[y] = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
+          lattice_row_change_ = std::max(lattice_row_change_, lattice_row_changes_[y]);
           ++lattice_rows_;
         }
     }
@@ -750,6 +758,9 @@ class OceanNode final : public gl::Node {
   std::size_t footprint_count_ = 0;
   double scatter_ms_ = -1.0;
   double lattice_row_change_ = 0.0;
+  // Per image row (top first), the relative change measured in it; NaN where none was (a row
+  // the coarser lattice leaves unresolved, or below kScatterNegligibleRow of the brightest).
+  std::vector<double> lattice_row_changes_;
   int lattice_rows_ = 0;  // the rows it was measured on
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests

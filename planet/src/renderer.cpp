@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "sky_provider_factory.hpp"
@@ -291,6 +292,7 @@ struct Renderer::Impl {
     std::vector<double> half_totals;
     samples = 0;
     sample_row_change = 0.0;
+    sample_row_changes.clear();
     const int least = std::min(reference.min_samples, max_samples);
     // The strata the ocean node's per-stratum cell cap was set for (reference_sun_cells).
     const int strata = reference_strata(reference);
@@ -331,11 +333,13 @@ struct Renderer::Impl {
       const std::vector<double> totals = row_totals(count);
       if (!half_totals.empty()) {
         sample_row_change = 0.0;
+        sample_row_changes.assign(height, std::numeric_limits<double>::quiet_NaN());
         const double brightest = *std::max_element(totals.begin(), totals.end());
         for (int y = 0; y < height; ++y)
-          if (totals[y] > kNegligibleRow * brightest)
-            sample_row_change =
-                std::max(sample_row_change, std::abs(totals[y] - half_totals[y]) / totals[y]);
+          if (totals[y] > kNegligibleRow * brightest) {
+            sample_row_changes[y] = std::abs(totals[y] - half_totals[y]) / totals[y];
+            sample_row_change = std::max(sample_row_change, sample_row_changes[y]);
+          }
         if (sample_row_change < reference.row_tolerance) break;
       }
       if (count >= max_samples) break;
@@ -385,6 +389,14 @@ struct Renderer::Impl {
     return 0.0;
   }
 
+  // A node's per-row measurement (gl::Node::row_measurements) by name; empty when no node has it.
+  std::vector<double> node_row_measurement(const std::string& name) const {
+    for (const auto& node : graph.nodes())
+      for (const auto& [key, rows] : node->row_measurements())
+        if (key == name) return rows;
+    return {};
+  }
+
   // The reference's sea samples write |alpha| >= this (shaders/ocean/ocean_lighting.frag,
   // REFERENCE_SEA_ALPHA: 2 + the sample's weight), every other pass 1.
   static constexpr double kReferenceSeaAlpha = 2.0;
@@ -405,6 +417,7 @@ struct Renderer::Impl {
   ReferenceSampling reference;
   int samples = 1;
   double sample_row_change = 0.0;
+  std::vector<double> sample_row_changes;  // RenderStats::sample_row_changes
   std::vector<double> resolved_rows;
   std::vector<float> sea_rgba;  // Renderer::reference_sea_image's pixels, top row first
 };
@@ -509,6 +522,7 @@ RenderStats Renderer::stats() const {
   stats.method = std::string(ocean::method_name(m.renderer_options.method));
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
+  stats.sample_row_changes = m.sample_row_changes;
   if (m.renderer_options.method == ocean::OceanMethod::reference && m.renderer_options.terms.sun)
     stats.reference_sun = reference_sun_name(m.renderer_options.reference.sun);
   stats.resolved_rows = m.resolved_rows;
@@ -518,6 +532,7 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_hidden = m.node_measurement("reference_sun.hidden_fraction");
   stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
   stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
+  stats.sun_lattice_row_changes = m.node_row_measurement("reference_sun.lattice_row_changes");
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

@@ -220,6 +220,20 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   EXPECT_GT(scattered["sun_lattice_ms"].get<double>(), 0.0);
   EXPECT_TRUE(scattered.contains("sun_lattice_row_change"));
   EXPECT_TRUE(scattered.contains("sun_lattice_rows"));
+  // Per image row: the change where the lattice counted the row, null where it did not; as
+  // many counted as sun_lattice_rows, the largest sun_lattice_row_change.
+  ASSERT_TRUE(scattered.contains("sun_lattice_row_changes"));
+  const auto& per_row = scattered["sun_lattice_row_changes"];
+  EXPECT_EQ(per_row.size(), scattered["height"].get<std::size_t>());
+  int counted = 0;
+  double largest = 0.0;
+  for (const auto& change : per_row)
+    if (!change.is_null()) {
+      ++counted;
+      largest = std::max(largest, change.get<double>());
+    }
+  EXPECT_EQ(counted, scattered["sun_lattice_rows"].get<int>());
+  EXPECT_DOUBLE_EQ(largest, scattered["sun_lattice_row_change"].get<double>());
   EXPECT_EQ(scattered["sun_lattice_refine"], 4);  // the default refinement, within the budget
   ASSERT_EQ(run("render " + kSmall +
                 " --no-png --method reference --samples 4 --reference-sun gathered --sun-cells 8 "
@@ -337,6 +351,28 @@ TEST_F(Cli, ValidateWritesTheReport) {
   const auto results16 = nlohmann::json::parse(in16);
   EXPECT_EQ(results16["reference"]["pixel_samples_without_sun"], 16);
   EXPECT_EQ(results16["cases"][0]["methods"][0]["terms"][0]["samples"], 16);
+  // With check_convergence and a doubling (16 to 32) the reference reports each row's change as
+  // its uncertainty; a row the test did not count (the top rows see only sky) takes the largest.
+  write("sky32.json", R"({"suite": "sky", "base": {"image.width": 24, "image.height": 16},
+    "methods": ["reference"], "terms": ["sky"], "flicker": {"frames": 1, "terms": ["sky"]},
+    "reference": {"pixel_samples": 32, "check_convergence": true},
+    "cases": [{"name": "near", "set": {}}]})");
+  ASSERT_EQ(run("validate sky32.json -o report32").status, 0);
+  std::ifstream in32(dir_ / "report32" / "results.json");
+  const auto results32 = nlohmann::json::parse(in32);
+  const auto& reference32 = results32["cases"][0]["methods"][0];
+  ASSERT_TRUE(reference32["row_uncertainty"].contains("sky"));
+  const auto& rows32 = reference32["row_uncertainty"]["sky"];
+  ASSERT_EQ(rows32.size(), 16u);
+  double largest = 0.0, smallest = 1e300;
+  for (const auto& u : rows32) {
+    ASSERT_FALSE(u.is_null());
+    largest = std::max(largest, u.get<double>());
+    smallest = std::min(smallest, u.get<double>());
+  }
+  EXPECT_DOUBLE_EQ(largest, reference32["convergence"]["sky"].get<double>());
+  EXPECT_DOUBLE_EQ(rows32[0].get<double>(), largest);  // the top row: sky only
+  EXPECT_LT(smallest, largest);                        // the rows of sea: each its own
   // The reference says on how many rows of the sea its sun resolved every wave: 2 cm waves seen
   // from 100 m at 24 x 16 are resolved on none (the sky's rows, resolved, are not the sea's), so
   // no row is compared and the sun's ratio plot says so instead of failing.

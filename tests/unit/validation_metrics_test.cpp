@@ -199,6 +199,102 @@ TEST(ValidationMetrics, RowErrorIsTheRelativeL1OfTheDefinedRowTotals) {
   EXPECT_THROW(row_error(method, {reference[0]}, ratios), std::invalid_argument);
 }
 
+// Per row the larger of the two tests; a row one test skipped takes that test's largest change.
+TEST(ValidationMetrics, ReferenceRowUncertaintyTakesTheLargerTestPerRow) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> samples = {nan, 0.01, 0.03, 0.002, nan};
+  const std::vector<double> lattice = {nan, 0.2, 0.01, nan, 0.05};
+  const std::vector<double> both = reference_row_uncertainty(samples, lattice, 5);
+  ASSERT_EQ(both.size(), 5u);
+  EXPECT_DOUBLE_EQ(both[0], 0.2);   // neither measured it: each test's largest
+  EXPECT_DOUBLE_EQ(both[1], 0.2);   // the lattice's
+  EXPECT_DOUBLE_EQ(both[2], 0.03);  // the samples'
+  EXPECT_DOUBLE_EQ(both[3], 0.2);   // the lattice skipped it: its largest
+  EXPECT_DOUBLE_EQ(both[4], 0.05);
+  const std::vector<double> samples_only = reference_row_uncertainty(samples, {}, 5);
+  EXPECT_DOUBLE_EQ(samples_only[0], 0.03);
+  EXPECT_DOUBLE_EQ(samples_only[3], 0.002);
+  const std::vector<double> all_nan(5, nan);  // a test that counted no row adds nothing
+  EXPECT_EQ(reference_row_uncertainty(samples, all_nan, 5), samples_only);
+  for (double u : reference_row_uncertainty({}, {}, 3)) EXPECT_TRUE(std::isnan(u));
+  EXPECT_THROW(reference_row_uncertainty(samples, std::vector<double>{0.1, 0.2}, 5),
+               std::invalid_argument);
+}
+
+// The bound against brute force: each row's reference moved over a fine grid of its interval
+// (the rows are independent, so the extreme of the sum is the sum of the rows' extremes), and
+// the reference that attains it reverses nothing that a larger difference decided.
+TEST(ValidationMetrics, RowErrorDifferenceBoundIsTheExtremeOverReferencesWithinTheirBounds) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int rows = 1 + trial % 7;
+    std::vector<ChannelValues> a(rows), b(rows), r(rows), ratios(rows);
+    std::vector<double> u(rows);
+    for (int y = 0; y < rows; ++y) {
+      r[y].l = 0.1 + unit(rng);
+      a[y].l = r[y].l * (0.5 + unit(rng));
+      b[y].l = r[y].l * 1.6 * unit(rng);
+      ratios[y].l = trial % 5 == 0 && y == 0 ? nan : 1.0;  // a row not compared: left out
+      u[y] = trial % 3 == 0 && y == 1 ? nan : 0.4 * unit(rng);
+    }
+    double order = 0.0, total = 0.0, rise = 0.0, fall = 0.0, slack = 0.0;
+    bool any_uncertainty = false;
+    for (int y = 0; y < rows; ++y) {
+      if (!std::isfinite(ratios[y].l)) continue;
+      const auto g = [&](double d) {
+        return std::abs(a[y].l - r[y].l - d) - std::abs(b[y].l - r[y].l - d);
+      };
+      order += g(0.0);
+      total += r[y].l;
+      const double half = std::isfinite(u[y]) ? u[y] * r[y].l : 0.0;
+      any_uncertainty = any_uncertainty || std::isfinite(u[y]);
+      double high = g(0.0), low = g(0.0);
+      for (int k = 0; k <= 20000; ++k) {
+        const double v = g(-half + 2.0 * half * k / 20000);
+        high = std::max(high, v);
+        low = std::min(low, v);
+      }
+      rise += high - g(0.0);
+      fall += g(0.0) - low;
+      slack += 2.0 * half / 20000;  // g's slope is at most 2, a kink half a step from the grid
+    }
+    const double got = row_error_difference_bound(a, b, r, ratios, u);
+    if (!any_uncertainty) {  // no row compared, or none with an uncertainty: not measured
+      EXPECT_TRUE(std::isnan(got)) << "trial " << trial;
+      continue;
+    }
+    const double want = (order < 0.0 ? rise : order > 0.0 ? fall : std::max(rise, fall)) / total;
+    EXPECT_NEAR(got, want, slack / total + 1e-15) << "trial " << trial;
+    EXPECT_GE(got + 1e-12, want) << "trial " << trial;
+  }
+}
+
+TEST(ValidationMetrics, RowErrorDifferenceBoundInSimpleCases) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<ChannelValues> r = {{1, 0, 0, 0}};
+  const std::vector<ChannelValues> one = {{1, 0, 0, 0}};
+  // Both below the reference and outside its 10 %: its error moves them alike.
+  EXPECT_EQ(row_error_difference_bound({{0.8, 0, 0, 0}}, {{0.3, 0, 0, 0}}, r, one,
+                                       std::vector<double>{0.1}),
+            0.0);
+  // a above the reference, b below: a reference lower by u r moves the difference by 2 u r
+  // toward b (|a - r'| - |b - r'| from -0.45 to -0.25 at r' = 0.9).
+  EXPECT_NEAR(row_error_difference_bound({{1.05, 0, 0, 0}}, {{0.5, 0, 0, 0}}, r, one,
+                                         std::vector<double>{0.1}),
+              0.2, 1e-15);
+  EXPECT_NEAR(row_error_difference_bound({{1.0, 0, 0, 0}}, {{1.01, 0, 0, 0}}, r, one,
+                                         std::vector<double>{0.1}),
+              0.02, 1e-15);  // at r' = 1.01 the order is reversed: -0.01 to +0.01
+  EXPECT_TRUE(std::isnan(row_error_difference_bound({{1, 0, 0, 0}}, {{2, 0, 0, 0}}, r, one,
+                                                    std::vector<double>{nan})));
+  EXPECT_TRUE(std::isnan(row_error_difference_bound({{1, 0, 0, 0}}, {{2, 0, 0, 0}}, r,
+                                                    {{nan, 0, 0, 0}}, std::vector<double>{0.1})));
+  EXPECT_THROW(row_error_difference_bound(one, one, r, one, std::vector<double>{}),
+               std::invalid_argument);
+}
+
 TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethodIsBlackToo) {
   Image black{2, 2, std::vector<float>(16, 0.0f)};
   const PixelMask mask = PixelMask::all(2, 2);

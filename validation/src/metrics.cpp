@@ -191,6 +191,63 @@ double row_error(const std::vector<ChannelValues>& method_totals,
   return total > 0.0 ? error / total : kNaN;
 }
 
+std::vector<double> reference_row_uncertainty(std::span<const double> sample_row_changes,
+                                              std::span<const double> lattice_row_changes,
+                                              int rows) {
+  std::vector<double> u(static_cast<std::size_t>(std::max(rows, 0)), kNaN);
+  for (const std::span<const double> test : {sample_row_changes, lattice_row_changes}) {
+    if (!test.empty() && static_cast<int>(test.size()) != rows)
+      throw std::invalid_argument("reference_row_uncertainty: " + std::to_string(test.size()) +
+                                  " rows of a test for " + std::to_string(rows));
+    double largest = -1.0;  // none measured
+    for (double change : test)
+      if (std::isfinite(change)) largest = std::max(largest, change);
+    if (largest < 0.0) continue;
+    for (std::size_t y = 0; y < u.size(); ++y) {
+      const double change = std::isfinite(test[y]) ? test[y] : largest;
+      u[y] = std::isnan(u[y]) ? change : std::max(u[y], change);
+    }
+  }
+  return u;
+}
+
+double row_error_difference_bound(const std::vector<ChannelValues>& a,
+                                  const std::vector<ChannelValues>& b,
+                                  const std::vector<ChannelValues>& reference,
+                                  const std::vector<ChannelValues>& ratios,
+                                  std::span<const double> uncertainty) {
+  const std::size_t n = ratios.size();
+  if (a.size() != n || b.size() != n || reference.size() != n || uncertainty.size() != n)
+    throw std::invalid_argument("row_error_difference_bound: rows of " + std::to_string(a.size()) +
+                                ", " + std::to_string(b.size()) + ", " +
+                                std::to_string(reference.size()) + ", " + std::to_string(n) +
+                                " and " + std::to_string(uncertainty.size()));
+  double rise = 0.0, fall = 0.0, order = 0.0, total = 0.0;
+  bool any_uncertainty = false;
+  for (std::size_t y = 0; y < n; ++y) {
+    if (!std::isfinite(ratios[y].l)) continue;
+    const double r = reference[y].l;
+    const double da = a[y].l - r, db = b[y].l - r;
+    const auto g = [&](double shift) { return std::abs(da - shift) - std::abs(db - shift); };
+    total += r;
+    order += g(0.0);
+    if (!std::isfinite(uncertainty[y])) continue;
+    any_uncertainty = true;
+    const double d = uncertainty[y] * std::abs(r);
+    double high = std::max(g(d), g(-d)), low = std::min(g(d), g(-d));
+    for (double kink : {da, db})
+      if (std::abs(kink) <= d) {
+        high = std::max(high, g(kink));
+        low = std::min(low, g(kink));
+      }
+    rise += std::max(high - g(0.0), 0.0);
+    fall += std::max(g(0.0) - low, 0.0);
+  }
+  if (!(total > 0.0) || !any_uncertainty) return kNaN;
+  const double bound = order < 0.0 ? rise : order > 0.0 ? fall : std::max(rise, fall);
+  return bound / total;
+}
+
 // ---------------------------------------------------------------------------------------------
 // Errors over the sea
 

@@ -243,9 +243,17 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   if (curves.empty()) return "";  // no reference in the suite: nothing was measured
   std::size_t rows = 0;
   for (const auto& [name, t] : curves) rows = std::max(rows, t->metrics.row_totals.size());
+  // The reference's relative uncertainty per row, where the ratios are defined (the reference's
+  // own ratio, 1, is defined exactly there).
+  const MethodResult* reference = reference_of(c);
+  const TermResult* reference_term = reference ? term_of(*reference, term) : nullptr;
+  const std::vector<double> uncertainty = reference_rows_uncertainty(c, term, rows);
+  bool any_uncertainty = false;
   std::string data = "# row";
   for (const auto& [name, t] : curves) data += " total_" + name + " ratio_" + name;
-  data += "\n# totals: luminance summed over the row's sea pixels, W m^-2 sr^-1 nm^-1\n";
+  data +=
+      " reference_uncertainty\n# totals: luminance summed over the row's sea pixels, "
+      "W m^-2 sr^-1 nm^-1; the reference's uncertainty: relative, per row\n";
   for (std::size_t y = 0; y < rows; ++y) {
     data += std::to_string(y);
     for (const auto& [name, t] : curves) {
@@ -254,7 +262,11 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
       data += " " + number(y < tot.size() ? tot[y].l : kNaN, "NaN");
       data += " " + number(y < rat.size() ? rat[y].l : kNaN, "NaN");
     }
-    data += "\n";
+    const auto& own =
+        reference_term ? reference_term->metrics.row_ratios : std::vector<ChannelValues>{};
+    const double u = y < own.size() && std::isfinite(own[y].l) ? uncertainty[y] : kNaN;
+    any_uncertainty = any_uncertainty || std::isfinite(u);
+    data += " " + number(u, "NaN") + "\n";
   }
   const std::string name = c.name + "_" + term + "_rows";
   std::string script = "set multiplot layout 2,1 title '" + c.name + ", " + term +
@@ -296,8 +308,16 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
     // where the reference is lit (ratio 0) or 100 times too bright is drawn at the clamp.
     script +=
         "set logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
-        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 "
-        "lc 'grey' notitle";
+        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot ";
+    // The band a method's ratio may lie in for being the truth's, given the reference's own
+    // uncertainty u: 1 +- u (clamped to the axis).
+    if (any_uncertainty) {
+      const std::string u = "$" + std::to_string(2 + 2 * curves.size());
+      script += "'" + name + ".dat' using 1:(clamp(1 - " + u + ")):(clamp(1 + " + u +
+                ")) with filledcurves fc 'grey' fs transparent solid 0.3 noborder title "
+                "\"reference's\\nuncertainty\", ";
+    }
+    script += "1 with lines dt 2 lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
       script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(3 + 2 * i) +
                 ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" + curves[i].first +
@@ -628,18 +648,21 @@ std::string metrics_csv(const Report& report) {
 }
 
 std::string rows_csv(const Report& report) {
-  std::string csv = csv_line({"case", "method", "term", "row", "total_l", "total_r", "total_g",
-                              "total_b", "ratio_l", "ratio_r", "ratio_g", "ratio_b"});
+  std::string csv =
+      csv_line({"case", "method", "term", "row", "total_l", "total_r", "total_g", "total_b",
+                "ratio_l", "ratio_r", "ratio_g", "ratio_b", "reference_uncertainty"});
   for (const CaseResult& c : report.cases)
     for (const MethodResult& m : c.methods)
       for (const TermResult& t : m.terms) {
         const auto& tot = t.metrics.row_totals;
         const auto& rat = t.metrics.row_ratios;
+        const std::vector<double> u = reference_rows_uncertainty(c, t.term, tot.size());
         for (std::size_t y = 0; y < tot.size(); ++y) {
           const ChannelValues r = y < rat.size() ? rat[y] : ChannelValues{kNaN, kNaN, kNaN, kNaN};
           csv += csv_line({c.name, m.name, t.term, std::to_string(y), number(tot[y].l),
                            number(tot[y].r), number(tot[y].g), number(tot[y].b), number(r.l),
-                           number(r.r), number(r.g), number(r.b)});
+                           number(r.r), number(r.g), number(r.b),
+                           number(std::isfinite(r.l) ? u[y] : kNaN)});
         }
       }
   return csv;
@@ -962,7 +985,8 @@ std::string ClaimLine::verdict() const {
 }
 
 namespace {
-// The case's reference's uncertainty for `term` (ClaimLine::uncertainty); NaN: not measured.
+// The largest change of the case's reference's convergence tests for `term` (the samples' and,
+// with the sun, the lattice's); NaN: not measured.
 double reference_uncertainty(const CaseResult& c, const std::string& term) {
   const MethodResult* reference = reference_of(c);
   if (!reference) return kNaN;
@@ -979,6 +1003,14 @@ double reference_uncertainty(const CaseResult& c, const std::string& term) {
 }
 }  // namespace
 
+std::vector<double> reference_rows_uncertainty(const CaseResult& c, const std::string& term,
+                                               std::size_t rows) {
+  if (const MethodResult* reference = reference_of(c))
+    for (const auto& [t, u] : reference->row_uncertainty)
+      if (t == term && u.size() == rows) return u;
+  return std::vector<double>(rows, reference_uncertainty(c, term));
+}
+
 std::vector<ClaimLine> fig10_claim(const Report& report) {
   std::vector<ClaimLine> lines;
   for (const CaseResult& c : report.cases) {
@@ -986,18 +1018,25 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
     const MethodResult* full = method_named(c, "full");
     const MethodResult* basic = method_named(c, "basic");
     if (!full || !basic) continue;
+    const MethodResult* reference = reference_of(c);
     for (const TermResult& f : full->terms) {
       const TermResult* b = term_of(*basic, f.term);
+      const TermResult* r = reference ? term_of(*reference, f.term) : nullptr;
       if (!measured(f) || !b || !measured(*b)) continue;
-      lines.push_back(
-          {.case_name = c.name,
-           .camera_height = c.camera_height,
-           .term = f.term,
-           .full = f.metrics.row_error,
-           .basic = b->metrics.row_error,
-           // A black reference's convergence is a ratio of invisible tails
-           // (2e5 in stop 22's wind10_8km_high_sun): nothing measured.
-           .uncertainty = f.metrics.reference_black ? kNaN : reference_uncertainty(c, f.term)});
+      ClaimLine line{.case_name = c.name,
+                     .camera_height = c.camera_height,
+                     .term = f.term,
+                     .full = f.metrics.row_error,
+                     .basic = b->metrics.row_error};
+      // A black reference's convergence is a ratio of invisible tails (2e5 in stop 22's
+      // wind10_8km_high_sun): nothing measured.
+      const std::size_t rows = f.metrics.row_ratios.size();
+      if (!f.metrics.reference_black && r && r->metrics.row_totals.size() == rows &&
+          b->metrics.row_totals.size() == rows && f.metrics.row_totals.size() == rows)
+        line.uncertainty = row_error_difference_bound(f.metrics.row_totals, b->metrics.row_totals,
+                                                      r->metrics.row_totals, f.metrics.row_ratios,
+                                                      reference_rows_uncertainty(c, f.term, rows));
+      lines.push_back(std::move(line));
     }
   }
   return lines;
@@ -1067,6 +1106,10 @@ std::string report_json(const Report& report) {
       }
       jm["resolved_rows"] = ojson::object();
       for (const auto& [term, rows] : m.resolved_rows) jm["resolved_rows"][term] = rows;
+      if (!m.row_uncertainty.empty()) {
+        jm["row_uncertainty"] = ojson::object();
+        for (const auto& [term, rows] : m.row_uncertainty) jm["row_uncertainty"][term] = rows;
+      }
       jm["terms"] = ojson::array();
       for (const TermResult& t : m.terms) {
         const ErrorStats& e = t.metrics.error;
@@ -1170,6 +1213,12 @@ Report report_from_json(const std::string& json_text) {
       if (jm.contains("resolved_rows"))
         for (const auto& [term, rows] : jm.at("resolved_rows").items())
           m.resolved_rows.push_back({term, rows.get<int>()});
+      if (jm.contains("row_uncertainty"))  // since stop 23
+        for (const auto& [term, rows] : jm.at("row_uncertainty").items()) {
+          std::vector<double> u;
+          for (const ojson& v : rows) u.push_back(get_number(v));
+          m.row_uncertainty.push_back({term, std::move(u)});
+        }
       for (const ojson& jt : jm.at("terms")) {
         TermResult t;
         t.term = jt.at("term");

@@ -46,6 +46,9 @@ struct RenderStats {
   // all of them (its convergence test, ReferenceSampling); 1 sample and 0 for the other methods.
   int samples = 1;
   double sample_row_change = 0.0;
+  // The same change per image row (top first; NaN in the rows the test does not count: without
+  // sea, or below 1e-3 of the brightest row); empty when the samples were not doubled.
+  std::vector<double> sample_row_changes;
   // The reference method with the sun term: how its sun was integrated, "scattered" or
   // "gathered" (ReferenceSun); empty otherwise.
   std::string reference_sun;
@@ -64,6 +67,9 @@ struct RenderStats {
   int sun_lattice_margin = 0;
   double sun_lattice_hidden = 0.0;
   int sun_lattice_refine = 0;
+  // The lattice's change per image row (top first; NaN in the rows it does not count); empty
+  // when the lattice was not measured.
+  std::vector<double> sun_lattice_row_changes;
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.

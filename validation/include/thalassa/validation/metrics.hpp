@@ -133,6 +133,39 @@ double row_error(const std::vector<ChannelValues>& method_totals,
                  const std::vector<ChannelValues>& reference_totals,
                  const std::vector<ChannelValues>& ratios);
 
+// The reference's relative uncertainty of each image row's total (top row first), from its two
+// convergence tests (issue 6, point 1): the larger of the row's change at the last doubling of
+// the samples (RenderStats::sample_row_changes) and, for a term with the sun, of its lattice
+// against one of half the cells (RenderStats::sun_lattice_row_changes). Each is the error of the
+// coarser of the two estimates, an upper estimate of the finer one's where it converges. A row
+// that a test measured elsewhere but not in it (NaN there: a row below the test's floor of 1e-3
+// of the brightest, or past the coarser lattice's cap) takes that test's largest change: nothing
+// says it converged better. A test that measured nothing (empty, or NaN everywhere) adds
+// nothing; every row is NaN when neither measured anything.
+std::vector<double> reference_row_uncertainty(std::span<const double> sample_row_changes,
+                                              std::span<const double> lattice_row_changes,
+                                              int rows);
+
+// How far the difference of two row errors against one reference, row_error(a) - row_error(b),
+// can move toward the other order when each of the reference's row totals r_y is uncertain by up
+// to u_y r_y (`uncertainty`, reference_row_uncertainty; NaN counts as 0). Their order is the sign
+// of D = sum_y g_y(0) alone, g_y(d) = |a_y - r_y - d| - |b_y - r_y - d| (the common denominator
+// sum_y r_y is positive). Over every reference within those bounds D rises by at most
+// sum_y max over |d| <= u_y r_y of (g_y(d) - g_y(0)) and falls by at most the same sum of
+// (g_y(0) - g_y(d)) (each row's d is free; g_y is piecewise linear, so each extreme lies at
+// d = +-u_y r_y or at a kink, d = a_y - r_y or b_y - r_y). Returns the rise when D < 0 (a is
+// the closer: how far toward b's being closer), the fall when D > 0, the larger when D = 0,
+// divided by sum_y r_y: in the row errors' unit, so that |row_error(a) - row_error(b)| larger
+// than it keeps its order for every such reference. A row adds 0 where a and b lie on the same
+// side of the reference and outside its bounds (its error moves both alike), at most 2 u_y r_y.
+// Over the rows where `ratios` is defined (row_error's); luminance. NaN when no row is defined,
+// or every u_y there is NaN.
+double row_error_difference_bound(const std::vector<ChannelValues>& a,
+                                  const std::vector<ChannelValues>& b,
+                                  const std::vector<ChannelValues>& reference,
+                                  const std::vector<ChannelValues>& ratios,
+                                  std::span<const double> uncertainty);
+
 // ---------------------------------------------------------------------------------------------
 // Relative errors over the sea.
 

@@ -62,6 +62,12 @@ struct MethodResult {
   // change of a row's total sun from a lattice of half the cells
   // (RenderStats::sun_lattice_row_change), the sun's own convergence test.
   std::vector<std::pair<std::string, double>> lattice_convergence;
+  // The reference only, per term: the relative uncertainty of each image row's total (top row
+  // first), from both tests (reference_row_uncertainty: a row a test did not count, a row of sky
+  // among them, takes that test's largest change; the report reads the rows it compares).
+  // Fig. 10's claim and the per-row plots use it; a report written before stop 23 has none,
+  // and its rows take the largest changes above instead.
+  std::vector<std::pair<std::string, std::vector<double>>> row_uncertainty;
   // The reference only, per term with the sun: the image rows of the sea (rows with a pixel of
   // the sea mask) where its sun resolved every wave (RenderStats::resolved_rows >=
   // kResolvedRowFraction); the other methods are compared with it on those rows only, for that
@@ -135,11 +141,12 @@ struct ClaimLine {
   double camera_height = 0.0;  // m
   std::string term;
   double full = 0.0, basic = 0.0;  // row errors (NaN: no row defined)
-  // The case's reference's own: the largest relative change of a row's total at its last
-  // doubling of the samples (MethodResult::convergence) and, for a term with the sun, of its
-  // sun's lattice against one of half the cells (MethodResult::lattice_convergence), whichever
-  // is larger. Either row error moves by at most this much with the reference's own error, so a
-  // difference within it is not resolved by the reference. NaN: not measured (taken as 0).
+  // What the case's reference's own error can do to the difference of the two row errors: the
+  // most it moves toward the other order over every reference whose rows are within their
+  // measured uncertainty (row_error_difference_bound of the reference's row_uncertainty; for
+  // a report before stop 23, every row within the largest change of its tests). A difference
+  // within it is not resolved by the reference. NaN: not measured (taken as 0), or the
+  // reference is black.
   double uncertainty = std::numeric_limits<double>::quiet_NaN();
   // The smaller difference the reference resolves: the uncertainty, 0 where not measured.
   double resolved() const { return std::isfinite(uncertainty) ? uncertainty : 0.0; }
@@ -157,6 +164,12 @@ struct ClaimLine {
   std::string verdict() const;
 };
 std::vector<ClaimLine> fig10_claim(const Report& report);
+
+// The case's reference's relative uncertainty of each of its `rows` row totals for `term`: its
+// MethodResult::row_uncertainty, or in a report without it (before stop 23) the largest change
+// of its convergence tests for the term in every row; NaN where not measured.
+std::vector<double> reference_rows_uncertainty(const CaseResult& c, const std::string& term,
+                                               std::size_t rows);
 
 struct ReportOptions {
   std::string gnuplot;                      // the gnuplot program; empty: "gnuplot" found on PATH

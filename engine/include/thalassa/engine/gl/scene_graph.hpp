@@ -91,6 +91,10 @@ class Node {
   // For the statistics: named numbers of the node's last computation that the frame times do not
   // show (the ocean's reference sun: its time and convergence), name without the node's prefix.
   virtual std::vector<std::pair<std::string, double>> measurements() const { return {}; }
+  // The same, one number per image row (top row first; NaN where a row has none).
+  virtual std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const {
+    return {};
+  }
 };
 
 class SceneGraph {
