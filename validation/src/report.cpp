@@ -247,7 +247,7 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   // own ratio, 1, is defined exactly there).
   const MethodResult* reference = reference_of(c);
   const TermResult* reference_term = reference ? term_of(*reference, term) : nullptr;
-  const std::vector<double> uncertainty = reference_rows_uncertainty(c, term, rows);
+  const std::vector<double> uncertainty = reference_rows_uncertainty(reference, term, rows);
   bool any_uncertainty = false;
   std::string data = "# row";
   for (const auto& [name, t] : curves) data += " total_" + name + " ratio_" + name;
@@ -656,7 +656,8 @@ std::string rows_csv(const Report& report) {
       for (const TermResult& t : m.terms) {
         const auto& tot = t.metrics.row_totals;
         const auto& rat = t.metrics.row_ratios;
-        const std::vector<double> u = reference_rows_uncertainty(c, t.term, tot.size());
+        const std::vector<double> u =
+            reference_rows_uncertainty(measured_against(c, m), t.term, tot.size());
         for (std::size_t y = 0; y < tot.size(); ++y) {
           const ChannelValues r = y < rat.size() ? rat[y] : ChannelValues{kNaN, kNaN, kNaN, kNaN};
           csv += csv_line({c.name, m.name, t.term, std::to_string(y), number(tot[y].l),
@@ -985,30 +986,28 @@ std::string ClaimLine::verdict() const {
 }
 
 namespace {
-// The largest change of the case's reference's convergence tests for `term` (the samples' and,
-// with the sun, the lattice's); NaN: not measured.
-double reference_uncertainty(const CaseResult& c, const std::string& term) {
-  const MethodResult* reference = reference_of(c);
-  if (!reference) return kNaN;
+// The largest change of a reference's convergence tests for `term` (the samples' and, with the
+// sun, the lattice's); NaN: not measured.
+double largest_change(const MethodResult& reference, const std::string& term) {
   double u = kNaN;
   const auto take = [&](double v) {
     if (std::isfinite(v)) u = std::isfinite(u) ? std::max(u, v) : v;
   };
-  for (const auto& [t, change] : reference->convergence)
+  for (const auto& [t, change] : reference.convergence)
     if (t == term) take(change);
   // One lattice for every term with the sun (measured on the first of them).
   if (term == "sun" || term == "all")
-    for (const auto& [t, change] : reference->lattice_convergence) take(change);
+    for (const auto& [t, change] : reference.lattice_convergence) take(change);
   return u;
 }
 }  // namespace
 
-std::vector<double> reference_rows_uncertainty(const CaseResult& c, const std::string& term,
-                                               std::size_t rows) {
-  if (const MethodResult* reference = reference_of(c))
-    for (const auto& [t, u] : reference->row_uncertainty)
-      if (t == term && u.size() == rows) return u;
-  return std::vector<double>(rows, reference_uncertainty(c, term));
+std::vector<double> reference_rows_uncertainty(const MethodResult* reference,
+                                               const std::string& term, std::size_t rows) {
+  if (!reference) return std::vector<double>(rows, kNaN);
+  for (const auto& [t, u] : reference->row_uncertainty)
+    if (t == term && u.size() == rows) return u;
+  return std::vector<double>(rows, largest_change(*reference, term));
 }
 
 std::vector<ClaimLine> fig10_claim(const Report& report) {
@@ -1033,9 +1032,9 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
       const std::size_t rows = f.metrics.row_ratios.size();
       if (!f.metrics.reference_black && r && r->metrics.row_totals.size() == rows &&
           b->metrics.row_totals.size() == rows && f.metrics.row_totals.size() == rows)
-        line.uncertainty = row_error_difference_bound(f.metrics.row_totals, b->metrics.row_totals,
-                                                      r->metrics.row_totals, f.metrics.row_ratios,
-                                                      reference_rows_uncertainty(c, f.term, rows));
+        line.uncertainty = row_error_difference_bound(
+            f.metrics.row_totals, b->metrics.row_totals, r->metrics.row_totals,
+            f.metrics.row_ratios, reference_rows_uncertainty(reference, f.term, rows));
       lines.push_back(std::move(line));
     }
   }

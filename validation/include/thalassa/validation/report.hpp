@@ -165,11 +165,11 @@ struct ClaimLine {
 };
 std::vector<ClaimLine> fig10_claim(const Report& report);
 
-// The case's reference's relative uncertainty of each of its `rows` row totals for `term`: its
+// A reference's relative uncertainty of each of its `rows` row totals for `term`: its
 // MethodResult::row_uncertainty, or in a report without it (before stop 23) the largest change
-// of its convergence tests for the term in every row; NaN where not measured.
-std::vector<double> reference_rows_uncertainty(const CaseResult& c, const std::string& term,
-                                               std::size_t rows);
+// of its convergence tests for the term in every row; NaN where not measured (or no reference).
+std::vector<double> reference_rows_uncertainty(const MethodResult* reference,
+                                               const std::string& term, std::size_t rows);
 
 struct ReportOptions {
   std::string gnuplot;                      // the gnuplot program; empty: "gnuplot" found on PATH
