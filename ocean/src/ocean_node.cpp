@@ -605,12 +605,14 @@ class OceanNode final : public gl::Node {
       const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
       const double brightest =
           fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
-      lattice_row_changes_.assign(fine.total.size(), std::numeric_limits<double>::quiet_NaN());
-      for (std::size_t y = 0; y < fine.total.size(); ++y)
+      const std::size_t rows = fine.total.size();
+      lattice_row_changes_.assign(rows, std::numeric_limits<double>::quiet_NaN());
+      for (std::size_t y = 0; y < rows; ++y)  // window rows, from the bottom
         if (coarse.resolved[y] >= kScatterResolvedRow &&
             fine.total[y] > kScatterNegligibleRow * brightest) {
-          lattice_row_changes_[y] = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
-          lattice_row_change_ = std::max(lattice_row_change_, lattice_row_changes_[y]);
+          const double change = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
+          lattice_row_changes_[rows - 1 - y] = change;  // image rows, from the top
+          lattice_row_change_ = std::max(lattice_row_change_, change);
           ++lattice_rows_;
         }
     }
@@ -758,8 +760,9 @@ class OceanNode final : public gl::Node {
   std::size_t footprint_count_ = 0;
   double scatter_ms_ = -1.0;
   double lattice_row_change_ = 0.0;
-  // Per image row (top first), the relative change measured in it; NaN where none was (a row
-  // the coarser lattice leaves unresolved, or below kScatterNegligibleRow of the brightest).
+  // Per image row (top first, where the scatter's rows are the window's, from the bottom), the
+  // relative change measured in it; NaN where none was (a row the coarser lattice leaves
+  // unresolved, or below kScatterNegligibleRow of the brightest).
   std::vector<double> lattice_row_changes_;
   int lattice_rows_ = 0;  // the rows it was measured on
   double hidden_fraction_ =

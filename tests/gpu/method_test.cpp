@@ -251,6 +251,29 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
   EXPECT_LT(stats.sun_lattice_row_change, 0.15);
   EXPECT_GT(stats.sun_lattice_ms, 0.0);
   for (float v : renderer.image().rgba) ASSERT_TRUE(std::isfinite(v));
+  // Per row, top first as the image's: a row the lattice counted holds sun and is resolved
+  // (the far rows at the top are not, at 64 cells per pixel side; rows counted from the bottom
+  // would land there), and the largest change is the reported one.
+  ASSERT_EQ(stats.sun_lattice_row_changes.size(), std::size_t(scene.image.height));
+  ASSERT_EQ(stats.sample_row_changes.size(), std::size_t(scene.image.height));
+  int counted = 0;
+  double largest = 0.0;
+  for (int y = 0; y < scene.image.height; ++y) {
+    const double change = stats.sun_lattice_row_changes[y];
+    if (!std::isfinite(change)) continue;
+    ++counted;
+    largest = std::max(largest, change);
+    double row_sun = 0.0;
+    for (int x = 0; x < scene.image.width; ++x) row_sun += renderer.image().pixel(x, y)[1];
+    EXPECT_GT(row_sun, 0.0) << "row " << y << " counted by the lattice has no sun";
+    EXPECT_GE(stats.resolved_rows[y], 0.99) << "row " << y;
+  }
+  EXPECT_EQ(counted, stats.sun_lattice_rows);
+  EXPECT_EQ(largest, stats.sun_lattice_row_change);
+  double largest_sample_change = -1.0;
+  for (double change : stats.sample_row_changes)
+    if (std::isfinite(change)) largest_sample_change = std::max(largest_sample_change, change);
+  EXPECT_EQ(largest_sample_change, stats.sample_row_change);
 }
 
 // The refinement near the mirror slope (shaders/ocean/reference_sun_scatter.comp, ScatterCell)
