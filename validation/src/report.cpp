@@ -272,8 +272,9 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   std::string script = "set multiplot layout 2,1 title '" + c.name + ", " + term +
                        ": total radiance per image row (fig. 10)'\n"
                        "set key outside right\nset grid\nset xlabel 'image row (0 = top)'\n"
-                       // The same left margin in both panels, so that their rows line up.
-                       "set lmargin 15\n"
+                       // The same margins in both panels, so that their rows line up (the
+                       // key, outside on the right, differs between them).
+                       "set lmargin 15\nset rmargin 22\n"
                        // Half a row each side: an image of one row has a range too.
                        "set xrange [-0.5:" +
                        number(static_cast<double>(rows) - 0.5) +
@@ -314,8 +315,8 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
     if (any_uncertainty) {
       const std::string u = "$" + std::to_string(2 + 2 * curves.size());
       script += "'" + name + ".dat' using 1:(clamp(1 - " + u + ")):(clamp(1 + " + u +
-                ")) with filledcurves fc 'grey' fs transparent solid 0.3 noborder title "
-                "\"reference's\\nuncertainty\", ";
+                ")) with filledcurves fc 'grey' fs transparent solid 0.5 noborder title "
+                "'reference \xC2\xB1 u', ";  // UTF-8 plus-minus
     }
     script += "1 with lines dt 2 lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
