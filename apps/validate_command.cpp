@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -218,8 +219,7 @@ class CaseRunner {
           const std::vector<double> u = validation::reference_row_uncertainty(
               suite_.reference.check_convergence ? rendered.stats.sample_row_changes : no_test,
               terms.sun ? lattice_rows : no_test, view.height());
-          if (std::any_of(u.begin(), u.end(), [](double v) { return std::isfinite(v); }))
-            m.row_uncertainty.emplace_back(term, u);
+          m.row_uncertainty.emplace_back(term, u);  // all NaN: neither test measured a row
           // The rows of the sea its sun resolves (a row of sky alone counts as resolved in
           // RenderStats::resolved_rows, and is never compared).
           const std::vector<double>& rows = rendered.stats.resolved_rows;
@@ -246,8 +246,12 @@ class CaseRunner {
                                                  png_black_level(scene.image.exposure));
           if (rendered.frames.size() >= 2) {
             t.flicker = validation::flicker(rendered.frames, view.sea_mask());
+            // Relative to the reference's changes: undefined where the reference is black.
             if (against.size() == rendered.frames.size())
-              t.temporal_error = validation::temporal_error(rendered.compared, against, compared);
+              t.temporal_error =
+                  t.metrics.reference_black
+                      ? std::numeric_limits<double>::quiet_NaN()
+                      : validation::temporal_error(rendered.compared, against, compared);
           }
         }
         m.terms.push_back(std::move(t));

@@ -656,8 +656,9 @@ class OceanNode final : public gl::Node {
     dispatch(programs[1], total);
   }
 
-  // Each image row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in buffer,
-  // and the fraction of the row's sum(omega) from footprints within the cell cap.
+  // Each row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in buffer, and the
+  // fraction of the row's sum(omega) from footprints within the cell cap; window rows, from the
+  // bottom (the scatter's pixel rows).
   struct SunRows {
     std::vector<double> total, resolved;
     double omega = 0.0, hidden = 0.0;  // the image's visible and hidden solid angles (sr)

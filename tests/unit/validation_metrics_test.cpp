@@ -221,14 +221,18 @@ TEST(ValidationMetrics, ReferenceRowUncertaintyTakesTheLargerTestPerRow) {
                std::invalid_argument);
 }
 
-// The bound against brute force: each row's reference moved over a fine grid of its interval
-// (the rows are independent, so the extreme of the sum is the sum of the rows' extremes), and
-// the reference that attains it reverses nothing that a larger difference decided.
+// The bound against brute force. Each row's reference is moved over a fine grid of its interval
+// toward the other order (the rows are independent, so the sum's extreme is the sum of the rows'
+// extremes); the shifted reference so built moves the difference by the bound (within the
+// grid's step) and no reference of the grid moves it further; and it reverses the two row
+// errors, measured against it with row_error itself, exactly when their difference is within the
+// bound.
 TEST(ValidationMetrics, RowErrorDifferenceBoundIsTheExtremeOverReferencesWithinTheirBounds) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  for (int trial = 0; trial < 200; ++trial) {
+  int reversed = 0, kept = 0;
+  for (int trial = 0; trial < 300; ++trial) {
     const int rows = 1 + trial % 7;
     std::vector<ChannelValues> a(rows), b(rows), r(rows), ratios(rows);
     std::vector<double> u(rows);
@@ -239,36 +243,65 @@ TEST(ValidationMetrics, RowErrorDifferenceBoundIsTheExtremeOverReferencesWithinT
       ratios[y].l = trial % 5 == 0 && y == 0 ? nan : 1.0;  // a row not compared: left out
       u[y] = trial % 3 == 0 && y == 1 ? nan : 0.4 * unit(rng);
     }
-    double order = 0.0, total = 0.0, rise = 0.0, fall = 0.0, slack = 0.0;
+    const auto g = [&](int y, double d) {
+      return std::abs(a[y].l - r[y].l - d) - std::abs(b[y].l - r[y].l - d);
+    };
+    double order = 0.0, total = 0.0, slack = 0.0;
     bool any_uncertainty = false;
     for (int y = 0; y < rows; ++y) {
       if (!std::isfinite(ratios[y].l)) continue;
-      const auto g = [&](double d) {
-        return std::abs(a[y].l - r[y].l - d) - std::abs(b[y].l - r[y].l - d);
-      };
-      order += g(0.0);
+      order += g(y, 0.0);
       total += r[y].l;
-      const double half = std::isfinite(u[y]) ? u[y] * r[y].l : 0.0;
       any_uncertainty = any_uncertainty || std::isfinite(u[y]);
-      double high = g(0.0), low = g(0.0);
-      for (int k = 0; k <= 20000; ++k) {
-        const double v = g(-half + 2.0 * half * k / 20000);
-        high = std::max(high, v);
-        low = std::min(low, v);
-      }
-      rise += high - g(0.0);
-      fall += g(0.0) - low;
-      slack += 2.0 * half / 20000;  // g's slope is at most 2, a kink half a step from the grid
     }
     const double got = row_error_difference_bound(a, b, r, ratios, u);
     if (!any_uncertainty) {  // no row compared, or none with an uncertainty: not measured
       EXPECT_TRUE(std::isnan(got)) << "trial " << trial;
       continue;
     }
-    const double want = (order < 0.0 ? rise : order > 0.0 ? fall : std::max(rise, fall)) / total;
-    EXPECT_NEAR(got, want, slack / total + 1e-15) << "trial " << trial;
-    EXPECT_GE(got + 1e-12, want) << "trial " << trial;
+    if (order == 0.0) continue;
+    const double toward = order < 0.0 ? 1.0 : -1.0;  // the direction of the other order
+    std::vector<ChannelValues> shifted = r;
+    double moved = 0.0;
+    constexpr int kSteps = 20000;
+    for (int y = 0; y < rows; ++y) {
+      if (!std::isfinite(ratios[y].l)) continue;
+      const double half = std::isfinite(u[y]) ? u[y] * r[y].l : 0.0;
+      double best = 0.0, best_shift = 0.0;
+      for (int k = 0; k <= kSteps; ++k) {
+        const double d = -half + 2.0 * half * k / kSteps;
+        const double change = toward * (g(y, d) - g(y, 0.0));
+        if (change > best) {
+          best = change;
+          best_shift = d;
+        }
+      }
+      moved += best;
+      shifted[y].l = r[y].l + best_shift;
+      slack += 2.0 * half / kSteps;  // g's slope is at most 2, a kink half a step from the grid
+    }
+    EXPECT_NEAR(got, moved / total, slack / total + 1e-15) << "trial " << trial;
+    EXPECT_GE(got + 1e-12, moved / total) << "trial " << trial;
+    // Against the shifted reference: the order reverses where the difference is within the bound.
+    const std::vector<ChannelValues> shifted_ratios = row_ratios(a, shifted);
+    std::vector<ChannelValues> compared = shifted_ratios;
+    for (int y = 0; y < rows; ++y)
+      if (!std::isfinite(ratios[y].l)) compared[y] = {nan, nan, nan, nan};
+    const double before = toward * (row_error(a, r, ratios) - row_error(b, r, ratios));
+    const double after =
+        toward * (row_error(a, shifted, compared) - row_error(b, shifted, compared));
+    const double margin = slack / total + 1e-12;
+    if (std::abs(order) / total > got + margin) {
+      EXPECT_LT(after, 0.0) << "trial " << trial << ": reversed beyond the bound";
+      ++kept;
+    } else if (std::abs(order) / total < got - margin) {
+      EXPECT_GE(after, 0.0) << "trial " << trial << ": not reversed within the bound";
+      ++reversed;
+    }
+    EXPECT_LT(before, 0.0) << "trial " << trial;
   }
+  EXPECT_GT(reversed, 20);  // both outcomes occur among the trials
+  EXPECT_GT(kept, 20);
 }
 
 TEST(ValidationMetrics, RowErrorDifferenceBoundInSimpleCases) {
@@ -350,6 +383,10 @@ TEST(ValidationMetrics, AReferenceBelowTheBlackLevelHasNoRelativeErrors) {
   EXPECT_FALSE(m.reference_black);
   EXPECT_GT(m.error.relative_l1.l, 1e6);
   EXPECT_TRUE(std::isfinite(m.row_error));
+
+  // No pixel compared (the reference's sun resolved no row): nothing measured, not black.
+  const PixelMask none{64, 48, std::vector<std::uint8_t>(64 * 48, 0)};
+  EXPECT_FALSE(compare_images(faint, tail, view, {}, &none, black).reference_black);
 
   // Without a black level (the default) nothing is black: the tail is compared as it is.
   m = compare_images(faint, tail, view);

@@ -402,6 +402,48 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(report_json(back), report_json(report));
 }
 
+// The claim's uncertainty from the reference's per-row uncertainty (MethodResult::row_uncertainty):
+// over two rows, full 10 % above and 5 % below the reference, basic 20 % and 10 % below, the
+// rows uncertain by 2 % and 20 %. The reference within those bounds moves full's lead of 0.075
+// by at most (0.04 + 0.1) / 2 = 0.07 (row_error_difference_bound), so full is closer; with the
+// largest change, 20 %, in every row (a report without per-row uncertainty) it could move it by
+// 0.25, and the two are indistinct.
+TEST_F(ValidationReport, Fig10ClaimTakesTheReferencesPerRowUncertainty) {
+  const auto make = [](bool per_row) {
+    CaseResult c;
+    c.name = "rows";
+    c.camera_height = 1000.0;
+    const double totals[3][2] = {{1.0, 1.0}, {0.8, 0.9}, {1.1, 0.95}};  // reference, basic, full
+    const char* names[3] = {"reference", "basic", "full"};
+    for (int k = 0; k < 3; ++k) {
+      MethodResult m{names[k], names[k], true, {}, {}};
+      TermResult t;
+      t.term = "sun";
+      for (double total : totals[k]) {
+        t.metrics.row_totals.push_back({total, total, total, total});
+        t.metrics.row_ratios.push_back({total, total, total, total});  // reference's rows are 1
+      }
+      t.metrics.row_error = (std::abs(totals[k][0] - 1.0) + std::abs(totals[k][1] - 1.0)) / 2.0;
+      m.terms.push_back(t);
+      c.methods.push_back(m);
+    }
+    c.methods[0].lattice_convergence = {{"sun", 0.2}};
+    if (per_row) c.methods[0].row_uncertainty = {{"sun", {0.02, 0.2}}};
+    Report report;
+    report.cases.push_back(c);
+    return fig10_claim(report);
+  };
+  const std::vector<ClaimLine> rows = make(true);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_NEAR(rows[0].full, 0.075, 1e-15);
+  EXPECT_NEAR(rows[0].basic, 0.15, 1e-15);
+  EXPECT_NEAR(rows[0].uncertainty, 0.07, 1e-15);
+  EXPECT_EQ(rows[0].verdict(), "closer");
+  const std::vector<ClaimLine> largest = make(false);
+  EXPECT_NEAR(largest[0].uncertainty, 0.25, 1e-15);
+  EXPECT_EQ(largest[0].verdict(), "indistinct");
+}
+
 // A report of stop 22 or before has no mean_row_deviation nor row_error: they are read back as
 // its rows' mean, and its rows' error against the rows of the reference each method was
 // measured against.
@@ -468,11 +510,16 @@ TEST_F(ValidationReport, SummaryAndFig10ClaimOverTheCases) {
   add_case("close", 1000.0, 0.2, 0.1, 0.11);
   report.cases.back().methods[0].convergence = {{"sky", 0.02}};
   report.cases.back().methods[0].lattice_convergence = {{"sun", 0.5}};
-  // A black reference: no row errors, and its own convergence (a ratio of invisible tails) is
-  // no uncertainty.
+  // A black reference (compare_images: its totals kept, no row ratio or row error defined): its
+  // own convergence, a ratio of invisible tails, is no uncertainty.
   add_case("black", 8000.0, nan, nan, nan);
   report.cases.back().methods[0].convergence = {{"sky", 2e5}};
-  for (MethodResult& m : report.cases.back().methods) m.terms[0].metrics.reference_black = true;
+  for (MethodResult& m : report.cases.back().methods) {
+    TermMetrics& t = m.terms[0].metrics;
+    t.reference_black = true;
+    t.row_totals = {{1e-20, 1e-20, 1e-20, 1e-20}};
+    t.row_ratios = {{nan, nan, nan, nan}};
+  }
   const std::vector<SummaryLine> lines = summarize(report);
   ASSERT_EQ(lines.size(), 2u);  // basic and full, sky; no line for the reference
   EXPECT_EQ(lines[0].method, "basic");

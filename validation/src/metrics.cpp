@@ -446,7 +446,7 @@ TermMetrics compare_images(const Image& method, const Image& reference, const Vi
       }
     return true;
   };
-  m.reference_black = black_level > 0.0 && black(reference);
+  m.reference_black = black_level > 0.0 && m.error.pixels > 0 && black(reference);
   if (m.reference_black) {
     for (ChannelValues& r : m.row_ratios) r = {kNaN, kNaN, kNaN, kNaN};
     m.max_row_deviation = max_row_deviation(m.row_ratios);

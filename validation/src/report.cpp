@@ -755,8 +755,9 @@ std::string summary_html(const Report& report,
          " the two drew the same rows (the foreground resolves no wave: basic's one variance is "
          "full's everywhere), in " +
          std::to_string(indistinct) +
-         " they differ by no more than the reference's own uncertainty (its last doubling's "
-         "largest row change, of the samples and, with the sun, of its lattice).</p>\n"
+         " they differ by no more than the reference's own uncertainty (the most its rows, each "
+         "uncertain by the change its convergence tests measured there, could move the "
+         "difference toward the other order).</p>\n"
          "<table><tr><th>case</th><th>camera height (m)</th><th>term</th><th>full</th>"
          "<th>basic</th><th>reference's uncertainty</th><th>full</th></tr>\n";
     for (const ClaimLine& l : claim)
@@ -1007,7 +1008,7 @@ std::vector<double> reference_rows_uncertainty(const MethodResult* reference,
                                                const std::string& term, std::size_t rows) {
   if (!reference) return std::vector<double>(rows, kNaN);
   for (const auto& [t, u] : reference->row_uncertainty)
-    if (t == term && u.size() == rows) return u;
+    if (t == term) return u.size() == rows ? u : std::vector<double>(rows, kNaN);
   return std::vector<double>(rows, largest_change(*reference, term));
 }
 
@@ -1018,7 +1019,7 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
     const MethodResult* full = method_named(c, "full");
     const MethodResult* basic = method_named(c, "basic");
     if (!full || !basic) continue;
-    const MethodResult* reference = reference_of(c);
+    const MethodResult* reference = measured_against(c, *full);
     for (const TermResult& f : full->terms) {
       const TermResult* b = term_of(*basic, f.term);
       const TermResult* r = reference ? term_of(*reference, f.term) : nullptr;
@@ -1028,11 +1029,11 @@ std::vector<ClaimLine> fig10_claim(const Report& report) {
                      .term = f.term,
                      .full = f.metrics.row_error,
                      .basic = b->metrics.row_error};
-      // A black reference's convergence is a ratio of invisible tails (2e5 in stop 22's
-      // wind10_8km_high_sun): nothing measured.
+      // A black reference defines no row (compare_images), so its convergence, a ratio of
+      // invisible tails (2e5 in stop 22's wind10_8km_high_sun), gives no uncertainty either.
       const std::size_t rows = f.metrics.row_ratios.size();
-      if (!f.metrics.reference_black && r && r->metrics.row_totals.size() == rows &&
-          b->metrics.row_totals.size() == rows && f.metrics.row_totals.size() == rows)
+      if (r && r->metrics.row_totals.size() == rows && b->metrics.row_totals.size() == rows &&
+          f.metrics.row_totals.size() == rows)
         line.uncertainty = row_error_difference_bound(
             f.metrics.row_totals, b->metrics.row_totals, r->metrics.row_totals,
             f.metrics.row_ratios, reference_rows_uncertainty(reference, f.term, rows));
@@ -1228,7 +1229,6 @@ Report report_from_json(const std::string& json_text) {
         t.png = jt.at("png");
         t.flicker = optional_from(jt, "flicker");
         t.temporal_error = optional_from(jt, "temporal_error");
-        t.metrics.reference_black = jt.value("reference_black", false);  // since stop 23
         t.metrics.max_row_deviation = get_number(jt.at("max_row_deviation"));
         const ojson& je = jt.at("error");
         t.metrics.error.pixels = je.at("pixels");
@@ -1236,6 +1236,10 @@ Report report_from_json(const std::string& json_text) {
         t.metrics.error.relative_rms = channels_from(je.at("relative_rms"));
         t.metrics.error.mean_abs = channels_from(je.at("mean_abs"));
         t.metrics.error.reference_mean = channels_from(je.at("reference_mean"));
+        // Since stop 23; a term that compared no pixel is not black (the first reports of stop
+        // 23 called it so).
+        t.metrics.reference_black =
+            jt.value("reference_black", false) && t.metrics.error.pixels > 0;
         const ojson& jh = jt.at("horizon");
         HorizonBand& h = t.metrics.horizon;
         h.mean = get_number(jh.at("mean"));

@@ -136,8 +136,11 @@ double row_error(const std::vector<ChannelValues>& method_totals,
 // The reference's relative uncertainty of each image row's total (top row first), from its two
 // convergence tests (issue 6, point 1): the larger of the row's change at the last doubling of
 // the samples (RenderStats::sample_row_changes) and, for a term with the sun, of its lattice
-// against one of half the cells (RenderStats::sun_lattice_row_changes). Each is the error of the
-// coarser of the two estimates, an upper estimate of the finer one's where it converges. A row
+// against one of half the cells (RenderStats::sun_lattice_row_changes). The samples' change,
+// (second half's mean - first half's) / 2, is one draw of the same spread as the error of the
+// mean of all of them (so a row may read low by chance); the lattice's, a deterministic
+// discretisation converging with the cells' size, is about the coarser lattice's error, an upper
+// estimate of the finer one's. A row
 // that a test measured elsewhere but not in it (NaN there: a row below the test's floor of 1e-3
 // of the brightest, or past the coarser lattice's cap) takes that test's largest change: nothing
 // says it converged better. A test that measured nothing (empty, or NaN everywhere) adds
@@ -239,7 +242,8 @@ double temporal_error(std::span<const Image> method, std::span<const Image> refe
 // gives ratios of 1 and zero errors).
 
 struct TermMetrics {
-  // No channel of any compared pixel of the reference reaches compare_images' black level: the
+  // Some pixels are compared, and no channel of any of the reference's reaches compare_images'
+  // black level (none compared: not black, nothing measured): the
   // term shows nothing there (the 10 m/s sea seen from 8 km with the sun 50 degrees high
   // reflects no glint into the view; its reference's sun is 1e-25 on average, the Gaussian
   // tail of the sun's disc, the methods' 1e-7, their BRDF's). Its row ratios, row error and
