@@ -340,7 +340,7 @@ struct Renderer::Impl {
             sample_row_changes[y] = std::abs(totals[y] - half_totals[y]) / totals[y];
             sample_row_change = std::max(sample_row_change, sample_row_changes[y]);
           }
-        if (sample_row_change < reference.row_tolerance) break;
+        if (!reference.fixed_samples && sample_row_change < reference.row_tolerance) break;
       }
       if (count >= max_samples) break;
       half_totals = totals;

@@ -64,6 +64,43 @@ TEST(OceanMethods, ReferenceSkyAndSeaConverge) {
   for (float v : reference.image.rgba) ASSERT_TRUE(std::isfinite(v));
 }
 
+// ReferenceSampling::fixed_samples draws max_samples whatever the rows do, at the sample points
+// of a render that converged there: `thalassa validate` renders the reference's later flicker
+// frames so, to difference the sea's motion rather than two estimates' noise. A render held to
+// the count another converged at is that render, to the bit; one held to more samples than
+// convergence needed draws them all.
+TEST(OceanMethods, FixedSamplesAreTheConvergedRendersPoints) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.image.width = 24;
+  scene.image.height = 16;
+  RendererOptions options;
+  options.method = ocean::OceanMethod::reference;
+  options.terms = {false, true, true, false};
+  options.reference.min_samples = 4;
+  options.reference.max_samples = 64;
+  options.reference.row_tolerance = 0.2;  // stops before 64 (measured: at 8; 0.05 ran to 64)
+  const auto draw = [&](const RendererOptions& o) {
+    Renderer renderer(*context, scene, o);
+    renderer.render();
+    return std::pair{renderer.image(), renderer.stats().samples};
+  };
+  const auto [converged, converged_samples] = draw(options);
+  std::printf("reference, sky + sea: converged at %d samples\n", converged_samples);
+  ASSERT_LT(converged_samples, 64);
+  RendererOptions fixed = options;
+  fixed.reference.fixed_samples = true;
+  fixed.reference.max_samples = converged_samples;
+  const auto [same, same_samples] = draw(fixed);
+  EXPECT_EQ(same_samples, converged_samples);
+  ASSERT_EQ(same.rgba.size(), converged.rgba.size());
+  for (std::size_t i = 0; i < same.rgba.size(); ++i) ASSERT_EQ(same.rgba[i], converged.rgba[i]) << i;
+  fixed.reference.max_samples = 64;
+  const auto [more, more_samples] = draw(fixed);
+  EXPECT_EQ(more_samples, 64);
+  EXPECT_NE(more.rgba, converged.rgba);
+}
+
 // The reference's sea alone (Renderer::reference_sea_image), which the validation compares with
 // the other methods at the pixels the horizon crosses: none of the sky's pixels saw the sea, all
 // of the foreground's did and there it is the image itself; the pixels the horizon crosses are

@@ -136,6 +136,10 @@ struct ReferenceSampling {
   int min_samples = 16;
   int max_samples = 1024;
   double row_tolerance = 0.01;
+  // Draw max_samples (rounded down to whole rounds) whatever the rows do: the same sample
+  // points as another frame that converged at that count (validate's flicker frames, whose
+  // difference is then the sea's motion, not two estimates' noise).
+  bool fixed_samples = false;
   int sun_cells = 256;
   double sun_cells_per_wavelength = 16.0;
   ReferenceSun sun = ReferenceSun::scattered;
