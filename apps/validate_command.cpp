@@ -12,6 +12,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
@@ -532,40 +533,42 @@ int run_validate(const ValidateArgs& args) {
   }
   ProgressBar bar(steps, "renders");
   CaseRunner runner(suite, *context, args.dir, bar);
+  // Per case, in the suite's order: its result once known. The kept ones are known from the
+  // start, so that every report written holds them all: neither a run cut short nor one whose
+  // --case comes earlier in the suite than the kept ones loses any (until stop 23 a report was
+  // written with the cases up to the one just run, and the kept ones after it were dropped).
+  std::vector<std::optional<CaseResult>> results(suite.cases.size());
+  for (std::size_t i = 0; i < suite.cases.size(); ++i)
+    if (kept[i]) results[i] = *kept[i];
+  const auto write = [&]() {
+    report.cases.clear();
+    for (const std::optional<CaseResult>& r : results)
+      if (r) report.cases.push_back(*r);
+    validation::write_report(report, args.dir);
+  };
   int failed = 0, run = 0;
   for (std::size_t i = 0; i < suite.cases.size(); ++i) {
     const SuiteCase& c = suite.cases[i];
-    bool retimed = false;
+    if (!selected[i]) continue;
     if (kept[i]) {
-      // Kept (selected or not): a resumed report holds every case it has finished. A selected
-      // one timed at other settings than the suite's is timed again (its images are kept).
-      report.cases.push_back(*kept[i]);
-      if (selected[i]) {
-        bar.skipped(c.name, "kept from the earlier run (--resume)");
-        if (retime_count(suite, *kept[i]) > 0) {
-          runner.retime(c, report.cases.back());
-          retimed = true;
-          ++run;
-        }
-      }
-    } else if (selected[i]) {
-      report.cases.push_back(runner.run(c));
-      report.cases.back().fingerprint = fingerprints[i];
-      ++run;
+      bar.skipped(c.name, "kept from the earlier run (--resume)");
+      // One timed at other settings than the suite's is timed again (its images are kept).
+      if (retime_count(suite, *kept[i]) == 0) continue;
+      runner.retime(c, *results[i]);
     } else {
-      continue;
+      results[i] = runner.run(c);
+      results[i]->fingerprint = fingerprints[i];
     }
-    if (selected[i] && !report.cases.back().passed()) {
+    ++run;
+    if (!results[i]->passed()) {
       ++failed;
-      print_error(
-          "case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
-          ", got " + std::to_string(report.cases.back().exit_status) +
-          (report.cases.back().message.empty() ? "" : " (" + report.cases.back().message + ")"));
+      print_error("case " + c.name + ": expected exit status " + std::to_string(c.expected_exit) +
+                  ", got " + std::to_string(results[i]->exit_status) +
+                  (results[i]->message.empty() ? "" : " (" + results[i]->message + ")"));
     }
-    if (kept[i] && !retimed) continue;
     // 3. The report, so far.
     try {
-      validation::write_report(report, args.dir);
+      write();
     } catch (const validation::ReportError& e) {
       bar.finish();
       print_error(e.what());
@@ -577,7 +580,7 @@ int run_validate(const ValidateArgs& args) {
     // Nothing rendered (every selected case kept): the report is still written, so that it
     // holds what this run selected.
     try {
-      validation::write_report(report, args.dir);
+      write();
     } catch (const validation::ReportError& e) {
       print_error(e.what());
       return kExitRuntimeFailure;

@@ -553,7 +553,16 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
 
   // Without --resume the folder's report is replaced by this run's cases alone.
   ASSERT_EQ(run("validate s.json -o out --case b").status, 0);
-  EXPECT_EQ(read_results()["cases"].size(), 1u);
+  const auto b_alone = read_results();
+  ASSERT_EQ(b_alone["cases"].size(), 1u);
+
+  // A case earlier in the suite than the kept one joins it: the report written after a holds b
+  // too (until stop 23 it held the cases up to the one just run, and b was lost).
+  ASSERT_EQ(run("validate s.json -o out --case a --resume").status, 0);
+  const auto a_then_b = read_results();
+  ASSERT_EQ(a_then_b["cases"].size(), 2u);
+  EXPECT_EQ(a_then_b["cases"][0]["name"], "a");
+  EXPECT_EQ(a_then_b["cases"][1], b_alone["cases"][0]);
 
   // Another suite's report, and a file that is no report: refused, nothing rendered.
   write("other.json", R"({"suite": "other", "base": {"image.width": 16, "image.height": 8},
