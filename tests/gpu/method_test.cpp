@@ -94,7 +94,8 @@ TEST(OceanMethods, FixedSamplesAreTheConvergedRendersPoints) {
   const auto [same, same_samples] = draw(fixed);
   EXPECT_EQ(same_samples, converged_samples);
   ASSERT_EQ(same.rgba.size(), converged.rgba.size());
-  for (std::size_t i = 0; i < same.rgba.size(); ++i) ASSERT_EQ(same.rgba[i], converged.rgba[i]) << i;
+  for (std::size_t i = 0; i < same.rgba.size(); ++i)
+    ASSERT_EQ(same.rgba[i], converged.rgba[i]) << i;
   fixed.reference.max_samples = 64;
   const auto [more, more_samples] = draw(fixed);
   EXPECT_EQ(more_samples, 64);
