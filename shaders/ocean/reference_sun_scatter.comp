@@ -67,8 +67,11 @@
 #include "ocean/reference_cell.glsl"
 
 // One invocation per segment of reference_segment cells of a row of cells of one footprint:
-// id = first_invocation + gl_GlobalInvocationID.x = (footprint x segments + segment) x
-// reference_max_cells + row, segments = ceil(reference_max_cells / reference_segment).
+// id = first_invocation + gl_GlobalInvocationID.x = ((footprint - first_footprint) x segments +
+// segment) x reference_max_cells + row, segments = ceil(reference_max_cells /
+// reference_segment). The CPU dispatches whole footprints per batch from first_footprint, so that
+// the 32-bit id counts one batch, not the lattice (whose slots, footprints x cap x segments,
+// passed 2^32 on the 4 m cases of the 20 m/s sea at 8 x 8 subcells: stop 24).
 //
 // Why segments. llvmpipe (Mesa's CPU renderer, the tests' and CI's) ends every loop of a shader
 // invocation once the invocation has run 65535 loop iterations in all (gallivm's
@@ -99,6 +102,7 @@ uniform int reference_refine;
 uniform float slope_curvature;
 uniform int margin;               // pixels added beyond each edge of the image
 uniform uint first_invocation;    // of this dispatch (the CPU dispatches in batches)
+uniform uint first_footprint;     // pass 2: the batch's first footprint
 uniform int reference_segment;    // most cells of a row per invocation (see above)
 // m: a bound on the displacement of every wave together (sum of amplitudes), for the margin's
 // test below.
@@ -466,7 +470,7 @@ void main() {
   const int j = int(id % uint(cap));
   const uint segment_id = id / uint(cap);
   const int segment = int(segment_id % uint(segments));
-  const uint footprint = segment_id / uint(segments);
+  const uint footprint = first_footprint + segment_id / uint(segments);
   const int columns = int(frame_viewport.x) + 2 * margin;
   const int rows = int(frame_viewport.y) + 2 * margin;
   if (footprint >= uint(columns * rows)) return;
