@@ -636,14 +636,17 @@ class OceanNode final : public gl::Node {
       glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
     }
     const std::uint64_t segments = (cap + scatter_segment_ - 1) / scatter_segment_;
-    // Footprints' pass: one invocation per footprint, in batches.
+    // `invocations` invocations of `program` from 0, in batches (first_invocation each).
+    const auto dispatch = [](GLuint program, GLint first, std::uint64_t invocations) {
+      for (std::uint64_t start = 0; start < invocations; start += kScatterBatch) {
+        glProgramUniform1ui(program, first, static_cast<GLuint>(start));
+        const std::uint64_t count = std::min(kScatterBatch, invocations - start);
+        glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+      }
+    };
+    // Footprints' pass: one invocation per footprint.
     glUseProgram(programs[0]);
-    const GLint first = glGetUniformLocation(programs[0], "first_invocation");
-    for (std::uint64_t start = 0; start < footprint_count_; start += kScatterBatch) {
-      glProgramUniform1ui(programs[0], first, static_cast<GLuint>(start));
-      const std::uint64_t count = std::min(kScatterBatch, footprint_count_ - start);
-      glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
-    }
+    dispatch(programs[0], glGetUniformLocation(programs[0], "first_invocation"), footprint_count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // Cells' pass: cap x segments invocations per footprint (at most 1024 x 1024), whole
     // footprints per batch, so that the shader's 32-bit invocation index counts one batch (the
@@ -657,13 +660,8 @@ class OceanNode final : public gl::Node {
     for (std::uint64_t footprint = 0; footprint < footprint_count_;
          footprint += footprints_per_batch) {
       glProgramUniform1ui(programs[1], first_footprint, static_cast<GLuint>(footprint));
-      const std::uint64_t invocations =
-          std::min(footprints_per_batch, footprint_count_ - footprint) * per_footprint;
-      for (std::uint64_t start = 0; start < invocations; start += kScatterBatch) {
-        glProgramUniform1ui(programs[1], first_cell, static_cast<GLuint>(start));
-        const std::uint64_t count = std::min(kScatterBatch, invocations - start);
-        glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
-      }
+      dispatch(programs[1], first_cell,
+               std::min(footprints_per_batch, footprint_count_ - footprint) * per_footprint);
     }
   }
 

@@ -314,6 +314,34 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
   EXPECT_EQ(largest_sample_change, stats.sample_row_change);
 }
 
+// The reference's sun alone on `scene` (4 samples, its lattice's convergence not measured), at
+// `cells_per_wavelength` cells per shortest wavelength refined `refine` x `refine`, at most `cap`
+// per pixel side: each image row's total (green), top first, and the rows' resolved fractions.
+struct SunRows {
+  std::vector<double> totals, resolved;
+  int refine = 0;  // the subcells per side that ran (RenderStats::sun_lattice_refine)
+};
+SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
+                           int refine, int cap) {
+  RendererOptions options;
+  options.method = ocean::OceanMethod::reference;
+  options.terms = {true, false, false, false};
+  options.reference.min_samples = 4;
+  options.reference.max_samples = 4;
+  options.reference.sun_cells = cap;
+  options.reference.sun_cells_per_wavelength = cells_per_wavelength;
+  options.reference.sun_refine = refine;
+  options.reference.measure_lattice = false;
+  Renderer renderer(context, scene, options);
+  renderer.render();
+  const Image image = renderer.image();
+  SunRows rows{std::vector<double>(image.height, 0.0), renderer.stats().resolved_rows,
+               renderer.stats().sun_lattice_refine};
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) rows.totals[y] += image.pixel(x, y)[1];
+  return rows;
+}
+
 // The refinement near the mirror slope (shaders/ocean/reference_sun_scatter.comp, ScatterCell)
 // is a finer lattice where the glints are: refined cells give what an unrefined lattice of the
 // same effective density gives, when the base cells are at least a quarter of the shortest
@@ -331,23 +359,10 @@ TEST(OceanMethods, RefinedSunLatticeIsTheFinerLattice) {
   scene.image.height = 16;
   scene.ocean.lambda_min = 2.0;
   const auto sun_rows = [&](double cells_per_wavelength, int refine) {
-    RendererOptions options;
-    options.method = ocean::OceanMethod::reference;
-    options.terms = {true, false, false, false};
-    options.reference.min_samples = 4;
-    options.reference.max_samples = 4;
-    options.reference.sun_cells = 1024;  // nothing capped
-    options.reference.sun_cells_per_wavelength = cells_per_wavelength;
-    options.reference.sun_refine = refine;
-    options.reference.measure_lattice = false;
-    Renderer renderer(*context, scene, options);
-    renderer.render();
-    EXPECT_EQ(renderer.stats().sun_lattice_refine, refine);
-    const Image image = renderer.image();
-    std::vector<double> rows(image.height, 0.0);
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) rows[y] += image.pixel(x, y)[1];
-    return rows;
+    const SunRows rows = reference_sun_rows(*context, scene, cells_per_wavelength, refine,
+                                            1024);  // nothing capped
+    EXPECT_EQ(rows.refine, refine);
+    return rows.totals;
   };
   const auto worst = [](const std::vector<double>& a, const std::vector<double>& b) {
     double brightest = 0.0, change = 0.0;
@@ -376,31 +391,14 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   scene.image.width = 24;
   scene.image.height = 16;
   scene.ocean.lambda_min = 2.0;
-  const auto render = [&](int cap) {
-    RendererOptions options;
-    options.method = ocean::OceanMethod::reference;
-    options.terms = {true, false, false, false};
-    options.reference.min_samples = 4;
-    options.reference.max_samples = 4;
-    options.reference.sun_cells = cap;
-    options.reference.sun_cells_per_wavelength = 4;
-    options.reference.measure_lattice = false;
-    Renderer renderer(*context, scene, options);
-    renderer.render();
-    const Image image = renderer.image();
-    std::vector<double> rows(image.height, 0.0);
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 0; x < image.width; ++x) rows[y] += image.pixel(x, y)[1];
-    return std::make_pair(rows, renderer.stats().resolved_rows);
-  };
-  const auto [small_rows, small_resolved] = render(256);
-  const auto [large_rows, large_resolved] = render(1024);
-  ASSERT_EQ(small_resolved.size(), std::size_t(scene.image.height));
+  const SunRows small = reference_sun_rows(*context, scene, 4, 4, 256);
+  const SunRows large = reference_sun_rows(*context, scene, 4, 4, 1024);
+  ASSERT_EQ(small.resolved.size(), std::size_t(scene.image.height));
   int compared = 0;
   double worst = 0.0;
   for (int y = 0; y < scene.image.height; ++y)
-    if (small_resolved[y] >= 0.99 && large_resolved[y] >= 0.99 && large_rows[y] > 0.0) {
-      worst = std::max(worst, std::abs(small_rows[y] / large_rows[y] - 1.0));
+    if (small.resolved[y] >= 0.99 && large.resolved[y] >= 0.99 && large.totals[y] > 0.0) {
+      worst = std::max(worst, std::abs(small.totals[y] / large.totals[y] - 1.0));
       ++compared;
     }
   std::printf("caps 256 and 1024: %d rows resolved by both, worst difference %.2e\n", compared,
