@@ -36,6 +36,9 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_margin"] = stats.sun_lattice_margin;
     json["sun_lattice_refine"] = stats.sun_lattice_refine;
     json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
+    json["sun_lattice_cells_per_wavelength"] = stats.sun_lattice_cells_per_wavelength;
+    json["sun_lattice_cells"] = stats.sun_lattice_cells;
+    json["sun_lattice_doublings"] = stats.sun_lattice_doublings;
   }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
   json["sky_provider"] = stats.sky_provider;
@@ -106,6 +109,15 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->check(CLI::Range(1.0, 64.0))
       ->capture_default_str();
   render
+      ->add_option("--sun-max-cells-per-wavelength", args.sun_max_cells_per_wavelength,
+                   "The reference's sun, scattered: while its lattice moves an image row's total "
+                   "by 1% or more against half its cells, double its cells (per wavelength and "
+                   "per pixel side, times sqrt 2) up to this many per wavelength (at least "
+                   "--sun-cells-per-wavelength; 0: no doubling); --stats "
+                   "sun_lattice_cells_per_wavelength says where it stopped")
+      ->check(CLI::Range(0.0, 64.0))
+      ->capture_default_str();
+  render
       ->add_option("--sun-refine", args.sun_refine,
                    "The reference's sun, scattered: cells whose slopes come near the mirror slope "
                    "(the few that reflect the sun) are cut into N x N subcells, as if the lattice "
@@ -135,6 +147,7 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
   renderer_options.reference.sun_refine = args.sun_refine;
+  renderer_options.reference.sun_max_cells_per_wavelength = args.sun_max_cells_per_wavelength;
   renderer_options.reference.sun = *parse_reference_sun(args.reference_sun);  // CLI11 checked
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight
@@ -142,6 +155,12 @@ int run_render(const RenderArgs& args) {
                 ": expected a camera below 20000 m (the method draws the "
                 "projected grid's sea), got camera.height " +
                 format_number(scene.camera.height)
+          : "",
+      args.sun_max_cells_per_wavelength != 0.0 &&
+              args.sun_max_cells_per_wavelength < args.sun_cells_per_wavelength
+          ? "--sun-max-cells-per-wavelength: expected 0 or at least --sun-cells-per-wavelength (" +
+                format_number(args.sun_cells_per_wavelength) + "), got " +
+                format_number(args.sun_max_cells_per_wavelength)
           : "",
       parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
       png.empty() ? "" : check_output("--png", png, ".png"),

@@ -54,6 +54,15 @@ struct Rendered {
   RenderStats stats;
 };
 
+// The reference's sun lattice as drawn (RenderStats::sun_lattice_cells_per_wavelength and
+// sun_lattice_cells), for the renders of a reference that draw the lattice another converged.
+struct SunLattice {
+  double cells_per_wavelength = 0.0;
+  int cells = 0;
+};
+
+constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+
 class CaseRunner {
  public:
   CaseRunner(const Suite& suite, GlContext& context, const std::string& dir, ProgressBar& bar)
@@ -176,9 +185,11 @@ class CaseRunner {
       // A variant's own reference is measured against itself, like the case's.
       if (!job.against.empty()) m.reference = "reference_" + job.against;
       // The sun's lattice converges once per reference, on its first term with the sun (the
-      // others draw the same lattice of the same view: the coarser one would cost them a third
-      // more for the same number).
+      // others draw the same lattice of the same view: the coarser one, and the doublings,
+      // would cost them a third more or several times for the same number). They draw the
+      // lattice it ended with.
       bool lattice_measured = false;
+      std::optional<SunLattice> lattice;
       std::vector<double> lattice_rows;  // its per-row changes (RenderStats), for every sun term
       for (const std::string& term : suite_.terms) {
         LightTerms terms;
@@ -186,7 +197,8 @@ class CaseRunner {
             !problem.empty())
           throw SceneError(suite_.source + ": " + problem);
         const bool measure_lattice = job.is_reference && terms.sun && !lattice_measured;
-        Rendered rendered = render_term(c, *method, scene, term, terms, measure_lattice);
+        Rendered rendered =
+            render_term(c, *method, scene, term, terms, measure_lattice, lattice);
         if (job.is_reference)
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] = validation::reference_for_comparison(
@@ -212,7 +224,14 @@ class CaseRunner {
           if (suite_.reference.check_convergence)
             m.convergence.emplace_back(term, rendered.stats.sample_row_change);
           if (measure_lattice && rendered.stats.sun_lattice_ms > 0.0) {
-            m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_row_change);
+            // No row measured (a sun black in the view, or no row resolved): undefined, not 0.
+            m.lattice_convergence.emplace_back(term, rendered.stats.sun_lattice_rows > 0
+                                                         ? rendered.stats.sun_lattice_row_change
+                                                         : kUndefined);
+            m.lattice_cells_per_wavelength.emplace_back(
+                term, rendered.stats.sun_lattice_cells_per_wavelength);
+            lattice = SunLattice{rendered.stats.sun_lattice_cells_per_wavelength,
+                                 rendered.stats.sun_lattice_cells};
             lattice_rows = rendered.stats.sun_lattice_row_changes;
             lattice_measured = true;
           }
@@ -263,9 +282,11 @@ class CaseRunner {
 
   // One method and term (`terms`, parsed from `term`) on the case: frame 0 at the scene's time,
   // then the flicker frames; the reference's sun measures its lattice's convergence on frame 0
-  // with measure_lattice.
+  // with measure_lattice (doubling its cells as the suite allows), and the other frames draw the
+  // lattice frame 0 ended with; with `lattice`, every frame draws that one.
   Rendered render_term(const SuiteCase& c, const SuiteMethod& method, const Scene& scene,
-                       const std::string& term, const LightTerms& terms, bool measure_lattice) {
+                       const std::string& term, const LightTerms& terms, bool measure_lattice,
+                       const std::optional<SunLattice>& lattice) {
     RendererOptions options;
     options.method = *ocean::parse_method(method.method);
     options.terms = terms;
@@ -277,6 +298,13 @@ class CaseRunner {
     options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
     options.reference.sun = *parse_reference_sun(reference.sun);  // the suite's parser checked
     options.reference.sun_refine = reference.sun_refine;
+    options.reference.sun_max_cells_per_wavelength = reference.sun_max_cells_per_wavelength;
+    const auto draw = [&](const SunLattice& drawn) {
+      options.reference.sun_cells_per_wavelength = drawn.cells_per_wavelength;
+      options.reference.sun_cells = drawn.cells;
+      options.reference.sun_max_cells_per_wavelength = 0.0;
+    };
+    if (lattice && lattice->cells > 0) draw(*lattice);
     const bool over_time = suite_.flicker.frames >= 2 &&
                            std::find(suite_.flicker.terms.begin(), suite_.flicker.terms.end(),
                                      term) != suite_.flicker.terms.end();
@@ -296,6 +324,8 @@ class CaseRunner {
         // of the motion (there 0.307 against 0.303 through the same samples).
         options.reference.max_samples = rendered.stats.samples;
         options.reference.fixed_samples = true;
+        if (rendered.stats.sun_lattice_cells > 0)
+          draw({rendered.stats.sun_lattice_cells_per_wavelength, rendered.stats.sun_lattice_cells});
       }
       Renderer renderer(context_, s, options);
       renderer.render();

@@ -68,6 +68,13 @@ constexpr int kScatterMaxMargin = 256;
 // their sea (a row past the cap changes with the cap, not with the lattice).
 constexpr double kScatterNegligibleRow = 1e-3;
 constexpr double kScatterResolvedRow = 0.99;
+// Nor below this mean sun factor per pixel (sr^-1; the lighting multiplies it by the sun's
+// transmitted spectral irradiance, at most about 2 W m^-2 nm^-1): radiance under 2e-8
+// W m^-2 sr^-1 nm^-1, a tenth of what the PNG shows as its first step at the default exposure
+// (docs/validation.md, "A black reference"). A sun whose glints miss the view leaves only the
+// sun disc's Gaussian tail (1e-25), whose rows' ratios between lattices are float noise (9.8e6
+// in stop 24's wind10_8km_high_sun) and would have the lattice double to its most for nothing.
+constexpr double kScatterBlackFactor = 1e-8;
 // The storage-buffer binding of the scattered sun (reference_sun_scatter.comp and
 // ocean_lighting.frag), clear of the waves' (1, 2) and the wakes' (3, 4), and the texture unit of
 // the grid's depth it reads, clear of the sky provider's (4-11) and the calm areas' (12).
@@ -285,7 +292,10 @@ class OceanNode final : public gl::Node {
             {"reference_sun.lattice_rows", double(lattice_rows_)},
             {"reference_sun.hidden_fraction", hidden_fraction_},
             {"reference_sun.margin_px", double(scatter_margin_)},
-            {"reference_sun.refine", double(scatter_refine_)}};
+            {"reference_sun.refine", double(scatter_refine_)},
+            {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
+            {"reference_sun.cells", double(lattice_cap_)},
+            {"reference_sun.doublings", double(lattice_doublings_)}};
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
@@ -475,9 +485,11 @@ class OceanNode final : public gl::Node {
   // sqrt 2; unless options_.reference_measure_lattice is off) gives lattice_row_change_, the
   // issue's "doubling the samples" for the sun's normal samples: the largest change of an image
   // row's total sun factor between the two, relative to the finer's, over the rows the coarser
-  // resolves (kScatterResolvedRow) that are brighter than kScatterNegligibleRow of the brightest.
-  // (The lighting multiplies the factor by the smooth transmitted irradiance, so the image's rows
-  // change alike.)
+  // resolves (kScatterResolvedRow) that are brighter than kScatterNegligibleRow of the brightest
+  // and than kScatterBlackFactor. (The lighting multiplies the factor by the smooth transmitted
+  // irradiance, so the image's rows change alike.) While that change is not below
+  // options_.reference_lattice_tolerance, the lattice doubles its cells, as the reference's
+  // samples double, up to options_.reference_max_cells_per_wavelength.
   void scatter_reference_sun(const gl::FrameInputs& inputs, const GridCamera& camera,
                              const glm::dvec2& downwind, Context& context) {
     const std::size_t floats = 4 * std::size_t(inputs.width) * std::size_t(inputs.height);
@@ -587,40 +599,75 @@ class OceanNode final : public gl::Node {
     // The grid's depth, just drawn (the compute pass reads it; nothing renders meanwhile).
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindTextureUnit(kGridDepthUnit, context.target.depth_texture());
-    const double spacing =
-        waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
-    const int cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
-    run_scatter(programs, reference_sun_buffer_.get(), spacing, cap);
+    // The lattice doubles its cells (spacing / sqrt 2) until no row moves by the tolerance
+    // against the lattice before it, or the most cells per wavelength, or kScatterMaxCells per
+    // pixel side, is reached. The cap grows with the cells (times sqrt 2) so that every lattice
+    // resolves the same footprints, hence the same rows.
+    double cells_per_wavelength = std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+    const double most_cells_per_wavelength =
+        std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength, 64.0);
+    const int first_cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
+    int cap = first_cap;
+    run_scatter(programs, reference_sun_buffer_.get(), waves_.lambda_min / cells_per_wavelength,
+                cap);
     const bool measure = options_.reference_measure_lattice;
     if (measure)
-      run_scatter(programs, coarse_sun_buffer_.get(), spacing * std::sqrt(2.0),
+      run_scatter(programs, coarse_sun_buffer_.get(),
+                  waves_.lambda_min / cells_per_wavelength * std::sqrt(2.0),
                   std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))));
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-    const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
-    hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
-    lattice_row_change_ = 0.0;
-    lattice_rows_ = 0;
-    lattice_row_changes_.clear();
-    if (measure) {
-      const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
-      const double brightest =
-          fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
-      const std::size_t rows = fine.total.size();
-      lattice_row_changes_.assign(rows, std::numeric_limits<double>::quiet_NaN());
-      for (std::size_t y = 0; y < rows; ++y)  // window rows, from the bottom
-        if (coarse.resolved[y] >= kScatterResolvedRow &&
-            fine.total[y] > kScatterNegligibleRow * brightest) {
-          const double change = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
-          lattice_row_changes_[rows - 1 - y] = change;  // image rows, from the top
-          lattice_row_change_ = std::max(lattice_row_change_, change);
-          ++lattice_rows_;
-        }
+    lattice_doublings_ = 0;
+    for (;;) {
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+      measure_lattice(inputs, measure);
+      // (From the first: rounding each doubling's cap would drift, 32 to 129 in four.)
+      const double finer = cells_per_wavelength * std::sqrt(2.0);
+      const int finer_cap = static_cast<int>(
+          std::lround(first_cap * std::pow(2.0, 0.5 * (lattice_doublings_ + 1))));
+      // (1 + 1e-9: two doublings of 16 reach 32 only to rounding.)
+      if (!measure || lattice_row_change_ < options_.reference_lattice_tolerance ||
+          finer > most_cells_per_wavelength * (1.0 + 1e-9) || finer_cap > kScatterMaxCells)
+        break;
+      // The finer lattice becomes the coarser one it is measured against.
+      std::swap(reference_sun_buffer_, coarse_sun_buffer_);
+      cells_per_wavelength = finer;
+      cap = finer_cap;
+      run_scatter(programs, reference_sun_buffer_.get(), waves_.lambda_min / cells_per_wavelength,
+                  cap);
+      ++lattice_doublings_;
     }
+    lattice_cells_per_wavelength_ = cells_per_wavelength;
+    lattice_cap_ = cap;
     scatter_ms_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     context.timer.end_pass("ocean.reference_sun");
     scatter_key_ = key;
     has_scatter_key_ = true;
+  }
+
+  // The lattice's convergence (lattice_row_change_, its rows and per-row changes) from the
+  // finer lattice in reference_sun_buffer_ and, when measured, the coarser in coarse_sun_buffer_;
+  // hidden_fraction_ from the finer.
+  void measure_lattice(const gl::FrameInputs& inputs, bool measure) {
+    const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
+    hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
+    lattice_row_change_ = 0.0;
+    lattice_rows_ = 0;
+    lattice_row_changes_.clear();
+    if (!measure) return;
+    const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
+    const double brightest =
+        fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
+    const double floor =
+        std::max(kScatterNegligibleRow * brightest, kScatterBlackFactor * inputs.width);
+    const std::size_t rows = fine.total.size();
+    lattice_row_changes_.assign(rows, std::numeric_limits<double>::quiet_NaN());
+    for (std::size_t y = 0; y < rows; ++y)  // window rows, from the bottom
+      if (coarse.resolved[y] >= kScatterResolvedRow && fine.total[y] > floor) {
+        const double change = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
+        lattice_row_changes_[rows - 1 - y] = change;  // image rows, from the top
+        lattice_row_change_ = std::max(lattice_row_change_, change);
+        ++lattice_rows_;
+      }
   }
 
   // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first: the
@@ -775,6 +822,11 @@ class OceanNode final : public gl::Node {
   // unresolved, or below kScatterNegligibleRow of the brightest).
   std::vector<double> lattice_row_changes_;
   int lattice_rows_ = 0;  // the rows it was measured on
+  // The finer lattice as run (after lattice_doublings_ doublings of the options' lattice): its
+  // cells per shortest wavelength and most cells per pixel side.
+  double lattice_cells_per_wavelength_ = 0.0;
+  int lattice_cap_ = 0;
+  int lattice_doublings_ = 0;
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests
 };

@@ -198,10 +198,14 @@ struct Renderer::Impl {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
             r.sun_cells >= 1 && r.sun_cells <= 1024 && r.sun_cells_per_wavelength >= 1.0 &&
-            r.sun_cells_per_wavelength <= 64.0))
+            r.sun_cells_per_wavelength <= 64.0 &&
+            (r.sun_max_cells_per_wavelength == 0.0 ||
+             (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
+              r.sun_max_cells_per_wavelength <= 64.0))))
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
-            "sun_cells in [1, 1024] and sun_cells_per_wavelength in [1, 64]");
+            "sun_cells in [1, 1024], sun_cells_per_wavelength in [1, 64] and "
+            "sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, 64]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(
@@ -219,6 +223,8 @@ struct Renderer::Impl {
            .reference_sun_refine = options.reference.sun_refine,
            .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
            .reference_measure_lattice = options.reference.measure_lattice,
+           .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
+           .reference_lattice_tolerance = options.reference.row_tolerance,
            .features = features}));
   }
 
@@ -533,6 +539,10 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
   stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
   stats.sun_lattice_row_changes = m.node_row_measurement("reference_sun.lattice_row_changes");
+  stats.sun_lattice_cells_per_wavelength =
+      m.node_measurement("reference_sun.cells_per_wavelength");
+  stats.sun_lattice_cells = static_cast<int>(m.node_measurement("reference_sun.cells"));
+  stats.sun_lattice_doublings = static_cast<int>(m.node_measurement("reference_sun.doublings"));
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

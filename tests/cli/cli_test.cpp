@@ -235,6 +235,10 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   EXPECT_EQ(counted, scattered["sun_lattice_rows"].get<int>());
   EXPECT_DOUBLE_EQ(largest, scattered["sun_lattice_row_change"].get<double>());
   EXPECT_EQ(scattered["sun_lattice_refine"], 4);  // the default refinement, within the budget
+  // The lattice as drawn: undoubled by default.
+  EXPECT_EQ(scattered["sun_lattice_cells_per_wavelength"], 16.0);
+  EXPECT_EQ(scattered["sun_lattice_cells"], 32);
+  EXPECT_EQ(scattered["sun_lattice_doublings"], 0);
   ASSERT_EQ(run("render " + kSmall +
                 " --no-png --method reference --samples 4 --reference-sun gathered --sun-cells 8 "
                 "-o gathered.exr --stats gathered.json")
@@ -249,6 +253,16 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   const Result wrong = run("render " + kSmall + " --method reference --reference-sun both");
   EXPECT_EQ(wrong.status, 2);
   EXPECT_NE(wrong.err.find("--reference-sun"), std::string::npos) << wrong.err;
+  // A lattice may only double up from where it starts.
+  const Result down = run("render " + kSmall +
+                          " --method reference --sun-cells-per-wavelength 16 "
+                          "--sun-max-cells-per-wavelength 8 -o down.exr");
+  EXPECT_EQ(down.status, 2);
+  EXPECT_NE(down.err.find("--sun-max-cells-per-wavelength: expected 0 or at least "
+                          "--sun-cells-per-wavelength (16), got 8"),
+            std::string::npos)
+      << down.err;
+  EXPECT_FALSE(fs::exists(dir_ / "down.exr"));
 }
 
 TEST_F(Cli, SceneFileAndSetOverride) {

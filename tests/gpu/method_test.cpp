@@ -407,6 +407,91 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   EXPECT_LT(worst, 1e-4);
 }
 
+// The reference's sun doubles its lattice (cells per wavelength and per pixel side times sqrt 2)
+// while a row moves by the tolerance against the lattice before it
+// (ReferenceSampling::sun_max_cells_per_wavelength), and stops at the first lattice that does not
+// or at the most it is allowed. What it ends with is the lattice it names: drawn directly, with
+// no doubling, that lattice gives the same image and measures the same change against the same
+// coarser lattice.
+TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.image.width = 24;
+  scene.image.height = 16;
+  scene.ocean.lambda_min = 2.0;
+  const auto render = [&](double cells_per_wavelength, int cells, double most,
+                          double tolerance = 0.01) {
+    RendererOptions options;
+    options.method = ocean::OceanMethod::reference;
+    options.terms = {true, false, false, false};
+    options.reference.min_samples = 4;
+    options.reference.max_samples = 4;
+    options.reference.sun_cells = cells;
+    options.reference.sun_cells_per_wavelength = cells_per_wavelength;
+    options.reference.sun_refine = 2;
+    options.reference.sun_max_cells_per_wavelength = most;
+    options.reference.row_tolerance = tolerance;  // the samples are fixed: the lattice's alone
+    Renderer renderer(*context, scene, options);
+    renderer.render();
+    return std::pair{renderer.stats(), renderer.image()};
+  };
+  // (A tolerance of 20 %, which this sea's lattices cross within the four doublings allowed; at
+  // 1 % they do not: 0.606 at 2 per wavelength, 0.095 at 8.)
+  constexpr double kTolerance = 0.2;
+  const auto [start, start_image] = render(2.0, 32, 0.0, kTolerance);
+  const auto [doubled, image] = render(2.0, 32, 8.0, kTolerance);
+  const auto [one, one_image] = render(2.0, 32, 2.0 * std::sqrt(2.0));
+  std::printf(
+      "lattice at 2 per wavelength: %.3g on %d rows; doubled %d times to %.3g per wavelength "
+      "and %d cells a side: %.3g on %d rows, %.0f ms (%.0f ms undoubled)\n",
+      start.sun_lattice_row_change, start.sun_lattice_rows, doubled.sun_lattice_doublings,
+      doubled.sun_lattice_cells_per_wavelength, doubled.sun_lattice_cells,
+      doubled.sun_lattice_row_change, doubled.sun_lattice_rows, doubled.sun_lattice_ms,
+      start.sun_lattice_ms);
+  // Undoubled, the lattice is as asked and far from the tolerance.
+  EXPECT_EQ(start.sun_lattice_doublings, 0);
+  EXPECT_EQ(start.sun_lattice_cells_per_wavelength, 2.0);
+  EXPECT_EQ(start.sun_lattice_cells, 32);
+  ASSERT_GE(start.sun_lattice_rows, 4);
+  ASSERT_GE(start.sun_lattice_row_change, kTolerance);
+  // Doubled: cells sqrt 2 apart per doubling, and it stopped at the first lattice within the
+  // tolerance, before the most allowed (the lattice before it, drawn directly, was not within).
+  const int d = doubled.sun_lattice_doublings;
+  ASSERT_GE(d, 1);
+  ASSERT_LT(d, 4);
+  EXPECT_NEAR(doubled.sun_lattice_cells_per_wavelength, 2.0 * std::pow(2.0, 0.5 * d), 1e-9);
+  EXPECT_EQ(doubled.sun_lattice_cells, std::lround(32.0 * std::pow(2.0, 0.5 * d)));
+  EXPECT_LT(doubled.sun_lattice_row_change, kTolerance);
+  EXPECT_GE(doubled.sun_lattice_rows, 4);
+  if (d >= 2) {
+    const double before = 2.0 * std::pow(2.0, 0.5 * (d - 1));
+    const auto [previous, previous_image] =
+        render(before, static_cast<int>(std::lround(32.0 * std::pow(2.0, 0.5 * (d - 1)))), 0.0);
+    EXPECT_GE(previous.sun_lattice_row_change, kTolerance);
+  }
+  // Allowed one doubling, it takes exactly one (at 1 %, not reached there).
+  EXPECT_EQ(one.sun_lattice_doublings, 1);
+  EXPECT_NEAR(one.sun_lattice_cells_per_wavelength, 2.0 * std::sqrt(2.0), 1e-9);
+  EXPECT_EQ(one.sun_lattice_cells, 45);
+  EXPECT_GE(one.sun_lattice_row_change, 0.01);
+  // The lattice it ended with, drawn directly.
+  const auto [direct, direct_image] = render(doubled.sun_lattice_cells_per_wavelength,
+                                            doubled.sun_lattice_cells, 0.0, kTolerance);
+  EXPECT_EQ(direct.sun_lattice_doublings, 0);
+  EXPECT_NEAR(direct.sun_lattice_row_change, doubled.sun_lattice_row_change, 1e-4);
+  EXPECT_EQ(direct.sun_lattice_rows, doubled.sun_lattice_rows);
+  double worst = 0.0;
+  for (int y = 0; y < image.height; ++y) {
+    double a = 0.0, b = 0.0;
+    for (int x = 0; x < image.width; ++x) {
+      a += image.pixel(x, y)[1];
+      b += direct_image.pixel(x, y)[1];
+    }
+    if (a > 0.0) worst = std::max(worst, std::abs(b / a - 1.0));
+  }
+  EXPECT_LT(worst, 1e-4);
+}
+
 // On a calm sea every cell of the reference's footprint is a flat mirror with no spread: its sun
 // is the sun's disc seen in a mirror, as the full method draws it (the same Ross BRDF at the
 // disc's minimum variance), so the image's total sun must agree; the reference's samples only

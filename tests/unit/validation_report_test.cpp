@@ -120,6 +120,7 @@ Report synthetic_report() {
   report.reference.sun_cells_per_wavelength = 12.5;
   report.reference.sun = "gathered";  // not the default: read back as written
   report.reference.sun_refine = 4;
+  report.reference.sun_max_cells_per_wavelength = 25.0;
   report.version = "0.1.0";
   CaseResult c;
   c.name = "wind10_100m_low_sun";
@@ -158,6 +159,7 @@ Report synthetic_report() {
     if (r.method == "reference") {
       r.convergence = {{"sun", 0.004}, {"all", 0.0071}};
       r.lattice_convergence = {{"sun", 0.018}, {"all", 0.0175}};
+      r.lattice_cells_per_wavelength = {{"sun", 17.677669529663689}};
       // Per row for the sun (some rows not measured); none for "all": its rows take the
       // largest change of its tests.
       std::vector<double> u(40);
@@ -230,7 +232,12 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
   EXPECT_NE(index.find("its sun gathered in cells"), std::string::npos);
   EXPECT_NE(index.find("cut into 4 x 4 subcells"), std::string::npos);
-  EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%;"), std::string::npos);
+  EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%; its lattice 17.68 cells per "
+                       "shortest wavelength (sun);"),
+            std::string::npos);
+  EXPECT_NE(index.find("doubles them (per wavelength and per pixel side, times sqrt 2) up to 1/25 "
+                       "of the shortest wavelength"),
+            std::string::npos);
   EXPECT_EQ(index.find("<markup>"), std::string::npos);
   EXPECT_EQ(index.find("=\"/"), std::string::npos);  // no absolute link
   // The row plot has the plain methods' curves only; the error plot every method but the
@@ -343,6 +350,8 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   EXPECT_EQ(back.reference.sun, report.reference.sun);
   EXPECT_EQ(back.reference.sun_refine, report.reference.sun_refine);
+  EXPECT_EQ(back.reference.sun_max_cells_per_wavelength,
+            report.reference.sun_max_cells_per_wavelength);
   EXPECT_EQ(back.timing, report.timing);
   EXPECT_EQ(back.cases[0].timing, c.timing);
   ASSERT_EQ(back.cases.size(), 2u);
@@ -360,6 +369,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     EXPECT_EQ(a.plain, b.plain);
     EXPECT_EQ(a.convergence, b.convergence);
     EXPECT_EQ(a.lattice_convergence, b.lattice_convergence);
+    EXPECT_EQ(a.lattice_cells_per_wavelength, b.lattice_cells_per_wavelength);
     ASSERT_EQ(a.row_uncertainty.size(), b.row_uncertainty.size());
     for (std::size_t k = 0; k < b.row_uncertainty.size(); ++k) {
       EXPECT_EQ(a.row_uncertainty[k].first, b.row_uncertainty[k].first);

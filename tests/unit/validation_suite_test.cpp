@@ -64,6 +64,9 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   EXPECT_EQ(suite.reference.sun, "scattered");  // the default: independent of the resolution
   EXPECT_GE(suite.reference.max_samples(true), 1024);
   EXPECT_GE(suite.reference.max_samples(false), 1024);
+  // The sun's lattice doubles where half its cells move a row by 1 % or more (stop 25).
+  EXPECT_GT(suite.reference.sun_max_cells_per_wavelength,
+            suite.reference.sun_cells_per_wavelength);
   // Every combination of wind, camera height and sun of issue 6, point 4, once; each case's
   // scene (and with each variant) builds.
   std::set<std::tuple<double, double, double>> seen;
@@ -283,6 +286,13 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
   const Suite gathered = suite(R"({"pixel_samples": 8, "sun": "gathered"})",
                                R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(gathered, gathered.cases[0], env), a);
+  const Suite doubling =
+      suite(R"({"pixel_samples": 8, "sun_cells_per_wavelength": 16, "sun_max_cells_per_wavelength": 32})",
+            R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
+  const Suite not_doubling = suite(R"({"pixel_samples": 8, "sun_cells_per_wavelength": 16})",
+                                   R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
+  EXPECT_NE(case_fingerprint(doubling, doubling.cases[0], env),
+            case_fingerprint(not_doubling, not_doubling.cases[0], env));
   const Suite other_method = suite(R"({"pixel_samples": 8})", R"({"ocean.waves": 120})",
                                    R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(other_method, other_method.cases[0], env), a);
@@ -475,6 +485,14 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
       {R"({"suite": "s", "reference": {"sun_refine": 9}, "cases": [)" + ok_case + "]}",
        "t.json: reference.sun_refine: expected an integer in [1, 8], got 9"},
+      {R"({"suite": "s", "reference": {"sun_cells_per_wavelength": 16, "sun_max_cells_per_wavelength": 8}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: reference.sun_max_cells_per_wavelength: expected at least "
+       "reference.sun_cells_per_wavelength (16), got 8"},
+      {R"({"suite": "s", "reference": {"sun_max_cells_per_wavelength": 65}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: reference.sun_max_cells_per_wavelength: expected a number in [1, 64] (cells), "
+       "got 65"},
       {R"({"suite": "s", "horizon": {"depth_deg": 5, "bin_deg": 6}, "cases": [)" + ok_case + "]}",
        "t.json: horizon.bin_deg: expected a number in (0, 5] (degrees; at most depth_deg), got 6"},
       {R"({"suite": "s", "base": {"image.width": 0}, "cases": [)" + ok_case + "]}",

@@ -813,6 +813,13 @@ std::string index_html(const Report& report,
                   std::to_string(report.reference.sun_refine) + " x " +
                   std::to_string(report.reference.sun_refine) + " subcells"
             : std::string()) +
+       (report.reference.sun_max_cells_per_wavelength >
+                report.reference.sun_cells_per_wavelength
+            ? "; while its lattice moves a row by 1 % or more against half its cells, it doubles "
+              "them (per wavelength and per pixel side, times sqrt 2) up to 1/" +
+                  short_number(report.reference.sun_max_cells_per_wavelength) +
+                  " of the shortest wavelength"
+            : std::string()) +
        ".</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
@@ -912,7 +919,13 @@ std::string index_html(const Report& report,
         h += "<p>" + html(which) +
              " sun's convergence (largest row change from a lattice of half the cells):";
         for (const auto& [term, change] : r.lattice_convergence)
-          h += " " + html(term) + " " + short_number(100.0 * change) + "%;";
+          h += " " + html(term) + " " +
+               (std::isfinite(change) ? short_number(100.0 * change) + "%"
+                                      : std::string("not measured (no row lit and resolved)")) +
+               ";";
+        for (const auto& [term, cells] : r.lattice_cells_per_wavelength)
+          h += " its lattice " + short_number(cells) + " cells per shortest wavelength (" +
+               html(term) + ");";
         h += "</p>\n";
       }
       if (!r.resolved_rows.empty()) {
@@ -1069,6 +1082,8 @@ std::string report_json(const Report& report) {
                     {"pixel_samples_without_sun", report.reference.pixel_samples_without_sun},
                     {"sun_normal_samples", report.reference.sun_normal_samples},
                     {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
+                    {"sun_max_cells_per_wavelength",
+                     report.reference.sun_max_cells_per_wavelength},
                     {"sun", report.reference.sun},
                     {"sun_refine", report.reference.sun_refine},
                     {"check_convergence", report.reference.check_convergence}};
@@ -1100,6 +1115,11 @@ std::string report_json(const Report& report) {
       if (m.timing_ms) jm["timing_ms"] = *m.timing_ms;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
+      if (!m.lattice_cells_per_wavelength.empty()) {
+        jm["lattice_cells_per_wavelength"] = ojson::object();
+        for (const auto& [term, cells] : m.lattice_cells_per_wavelength)
+          jm["lattice_cells_per_wavelength"][term] = cells;
+      }
       if (!m.lattice_convergence.empty()) {
         jm["lattice_convergence"] = ojson::object();
         for (const auto& [term, change] : m.lattice_convergence)
@@ -1184,6 +1204,10 @@ Report report_from_json(const std::string& json_text) {
     report.reference.sun_cells_per_wavelength = get_number(jr.at("sun_cells_per_wavelength"));
     report.reference.sun = jr.value("sun", std::string("gathered"));  // older reports gathered
     report.reference.sun_refine = jr.value("sun_refine", 1);          // and did not refine
+    report.reference.sun_max_cells_per_wavelength =  // nor double (before stop 25)
+        jr.contains("sun_max_cells_per_wavelength")
+            ? get_number(jr.at("sun_max_cells_per_wavelength"))
+            : 0.0;
     report.reference.check_convergence = jr.at("check_convergence");
   }
   for (const ojson& jc : j.at("cases")) {
@@ -1211,6 +1235,9 @@ Report report_from_json(const std::string& json_text) {
       if (jm.contains("lattice_convergence"))
         for (const auto& [term, change] : jm.at("lattice_convergence").items())
           m.lattice_convergence.push_back({term, get_number(change)});
+      if (jm.contains("lattice_cells_per_wavelength"))
+        for (const auto& [term, cells] : jm.at("lattice_cells_per_wavelength").items())
+          m.lattice_cells_per_wavelength.push_back({term, get_number(cells)});
       if (jm.contains("resolved_rows"))
         for (const auto& [term, rows] : jm.at("resolved_rows").items())
           m.resolved_rows.push_back({term, rows.get<int>()});

@@ -362,13 +362,15 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     if (!r.is_object())
       fail(source, "reference",
            "an object {\"pixel_samples\", \"pixel_samples_without_sun\", "
-           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", \"sun\", \"sun_refine\", "
+           "\"sun_normal_samples\", \"sun_cells_per_wavelength\", "
+           "\"sun_max_cells_per_wavelength\", \"sun\", \"sun_refine\", "
            "\"check_convergence\"}",
            describe(r));
     static constexpr std::string_view kReferenceKeys[] = {"pixel_samples",
                                                           "pixel_samples_without_sun",
                                                           "sun_normal_samples",
                                                           "sun_cells_per_wavelength",
+                                                          "sun_max_cells_per_wavelength",
                                                           "sun",
                                                           "sun_refine",
                                                           "check_convergence"};
@@ -386,6 +388,19 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
       suite.reference.sun_cells_per_wavelength =
           number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength", 1,
                     64, "cells", false);
+    if (r.contains("sun_max_cells_per_wavelength")) {
+      const double most = number_at(r["sun_max_cells_per_wavelength"], source,
+                                    "reference.sun_max_cells_per_wavelength", 1, 64, "cells", false);
+      if (most < suite.reference.sun_cells_per_wavelength) {
+        char expected[96];
+        std::snprintf(expected, sizeof expected,
+                      "at least reference.sun_cells_per_wavelength (%g)",
+                      suite.reference.sun_cells_per_wavelength);
+        fail(source, "reference.sun_max_cells_per_wavelength", expected,
+             describe(r["sun_max_cells_per_wavelength"]));
+      }
+      suite.reference.sun_max_cells_per_wavelength = most;
+    }
     if (r.contains("sun")) {
       const json& sun = r["sun"];
       if (!sun.is_string() || (sun != "scattered" && sun != "gathered"))
@@ -575,6 +590,9 @@ std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string
                          {"sun", r.sun},
                          {"sun_refine", r.sun_refine},
                          {"check_convergence", r.check_convergence}};
+  // Only when set, so that the reports of suites that never double keep their fingerprints.
+  if (r.sun_max_cells_per_wavelength > 0.0)
+    inputs["reference"]["sun_max_cells_per_wavelength"] = r.sun_max_cells_per_wavelength;
   inputs["horizon"] = {{"depth_deg", suite.horizon.depth_deg}, {"bin_deg", suite.horizon.bin_deg}};
   inputs["expected_exit"] = c.expected_exit;
   inputs["expected_error"] = c.expected_error;

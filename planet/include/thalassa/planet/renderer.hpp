@@ -70,6 +70,12 @@ struct RenderStats {
   // The lattice's change per image row (top first; NaN in the rows it does not count); empty
   // when the lattice was not measured.
   std::vector<double> sun_lattice_row_changes;
+  // The lattice as drawn, after sun_lattice_doublings doublings of its cells
+  // (ReferenceSampling::sun_max_cells_per_wavelength): its cells per shortest wavelength and most
+  // cells per pixel side. The change above is against the lattice before its last doubling.
+  double sun_lattice_cells_per_wavelength = 0.0;
+  int sun_lattice_cells = 0;
+  int sun_lattice_doublings = 0;
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
@@ -152,6 +158,14 @@ struct ReferenceSampling {
   // statistics report no lattice rows (sun_lattice_rows 0): for frames whose convergence is
   // measured on another frame of the same view (validate's flicker frames).
   bool measure_lattice = true;
+  // Scattered and measured: while its lattice moves a compared row by row_tolerance or more
+  // against the lattice of half its cells, the sun doubles its cells (sun_cells_per_wavelength
+  // and sun_cells times sqrt 2: the same footprints resolved, so the same rows compared) and
+  // measures again, up to this many cells per wavelength and 1024 per pixel side: the samples'
+  // doubling, for the sun's normal samples (issue 6, point 1). Each doubling costs about twice
+  // the lattice before it. 0 (the default): none, the lattice as sun_cells_per_wavelength says;
+  // else in [sun_cells_per_wavelength, 64].
+  double sun_max_cells_per_wavelength = 0.0;
 };
 
 struct RendererOptions {

@@ -62,6 +62,10 @@ struct MethodResult {
   // change of a row's total sun from a lattice of half the cells
   // (RenderStats::sun_lattice_row_change), the sun's own convergence test.
   std::vector<std::pair<std::string, double>> lattice_convergence;
+  // With it: the cells per shortest wavelength its lattice was drawn with, after its doublings
+  // (RenderStats::sun_lattice_cells_per_wavelength; ReferenceSettings::
+  // sun_max_cells_per_wavelength). Empty in reports before stop 25.
+  std::vector<std::pair<std::string, double>> lattice_cells_per_wavelength;
   // The reference only, per term: the relative uncertainty of each image row's total (top row
   // first), from both tests (reference_row_uncertainty: a row a test did not count, a row of sky
   // among them, takes that test's largest change; the report reads the rows it compares).

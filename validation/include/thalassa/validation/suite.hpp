@@ -122,6 +122,10 @@ struct ReferenceSettings {
   // Scattered: subcells per side of the cells whose slopes come near the mirror slope, [1, 8]
   // (1: none; ReferenceSampling::sun_refine).
   int sun_refine = 4;
+  // Scattered: while the lattice moves a compared row by 1 % or more against half its cells, it
+  // doubles its cells up to this many per wavelength, [sun_cells_per_wavelength, 64]; 0: never
+  // (ReferenceSampling::sun_max_cells_per_wavelength).
+  double sun_max_cells_per_wavelength = 0.0;
   bool check_convergence = false;
 
   // The most samples per pixel of a term with the sun or without it.

@@ -50,6 +50,12 @@ struct OceanNodeOptions {
   // With the scatter: also the lattice of half the cells, for its convergence (ReferenceSampling::
   // measure_lattice).
   bool reference_measure_lattice = true;
+  // With it: while a compared row moves by reference_lattice_tolerance (relative) or more, the
+  // lattice doubles its cells (cells per wavelength and reference_sun_cells times sqrt 2) up to
+  // reference_max_cells_per_wavelength (below reference_cells_per_wavelength: no doubling) and
+  // 1024 cells per pixel side (ReferenceSampling::sun_max_cells_per_wavelength).
+  double reference_max_cells_per_wavelength = 0.0;
+  double reference_lattice_tolerance = 0.01;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
