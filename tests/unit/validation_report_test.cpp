@@ -198,7 +198,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   options.plot_height = 400;
   const std::vector<std::string> written = write_report(report, dir_.string(), options);
   for (const char* name : {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv",
-                           "summary.csv", "claim.csv", "index.html"})
+                           "summary.csv", "claim.csv", "convergence.csv", "index.html"})
     EXPECT_TRUE(std::find(written.begin(), written.end(), name) != written.end()) << name;
   const std::string c = report.cases[0].name;
   // Per term: rows and horizon; per case: error against time. The case that did not render has
@@ -217,7 +217,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_EQ(png.height, 400) << p;
   }
   for (const std::string& rel : written) EXPECT_TRUE(fs::is_regular_file(dir_ / rel)) << rel;
-  EXPECT_EQ(written.size(), 8u + 3u * plots.size());
+  EXPECT_EQ(written.size(), 9u + 3u * plots.size());
   // Nothing pending or temporary is left.
   for (const auto& entry : fs::recursive_directory_iterator(dir_))
     EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
@@ -230,6 +230,8 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_NE(index.find("href=\"" + t.exr + "\""), std::string::npos) << t.exr;
   }
   EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
+  EXPECT_NE(index.find("Of 2 references and terms: 0 within it, <span class=\"fail\">2 not</span>"),
+            std::string::npos);
   EXPECT_NE(index.find("its sun gathered in cells"), std::string::npos);
   EXPECT_NE(index.find("cut into 4 x 4 subcells"), std::string::npos);
   EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%; its lattice 17.68 cells per "
@@ -334,6 +336,23 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     expect_same(csv_number(f[7]), b.mean, "mean");
     expect_same(csv_number(f[8]), b.std, "std");
   }
+  // convergence.csv: the reference's two terms, each above 1 % by its sun's lattice (one per
+  // reference: the larger of its two entries, 1.8 %).
+  const auto convergence = parse_csv(read_text(dir_ / "convergence.csv"));
+  ASSERT_EQ(convergence.size(), 3u);
+  EXPECT_EQ(convergence[0],
+            (std::vector<std::string>{"case", "reference", "term", "samples", "sample_change",
+                                      "lattice_change", "lattice_cells_per_wavelength",
+                                      "converged"}));
+  EXPECT_EQ(convergence[1][2], "sun");
+  EXPECT_EQ(convergence[1][3], "64");
+  EXPECT_DOUBLE_EQ(std::stod(convergence[1][4]), 0.004);
+  EXPECT_DOUBLE_EQ(std::stod(convergence[1][5]), 0.018);
+  EXPECT_NEAR(std::stod(convergence[1][6]), 17.6777, 1e-4);
+  EXPECT_EQ(convergence[1][7], "no");
+  EXPECT_EQ(convergence[2][2], "all");
+  EXPECT_DOUBLE_EQ(std::stod(convergence[2][5]), 0.018);
+  EXPECT_EQ(convergence[2][7], "no");
   // cases.csv: the quoted description-free fields and the pass/fail.
   const auto cases = parse_csv(read_text(dir_ / "cases.csv"));
   ASSERT_EQ(cases.size(), 3u);
@@ -643,5 +662,61 @@ TEST_F(ValidationReport, FailingGnuplotIsReportedWithItsOutput) {
   EXPECT_FALSE(fs::exists(dir_ / "out" / "index.html"));
 }
 
+
+// Issue 6, point 1's verdict per reference and term: every test it has below 1 %; a sun term
+// needs its lattice measured; one test at or above 1 % fails it whatever the other says.
+TEST(ValidationConvergence, EveryTestBelowOnePercentAndTheSunsLatticeMeasured) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto verdict = [](double samples, double lattice, bool sun) {
+    ConvergenceLine l;
+    l.sample_change = samples;
+    l.lattice_change = lattice;
+    l.with_sun = sun;
+    return l.converged();
+  };
+  EXPECT_EQ(verdict(0.009, nan, false), "yes");
+  EXPECT_EQ(verdict(0.01, nan, false), "no");  // "less than 1 %"
+  EXPECT_EQ(verdict(nan, nan, false), "undefined");
+  EXPECT_EQ(verdict(0.0, 0.0099, true), "yes");
+  EXPECT_EQ(verdict(0.0, 0.43, true), "no");
+  EXPECT_EQ(verdict(0.0, nan, true), "undefined");  // a black sun: no row measured
+  EXPECT_EQ(verdict(0.02, nan, true), "no");
+  EXPECT_EQ(verdict(nan, 0.02, true), "no");
+  EXPECT_EQ(verdict(0.0, 0.43, false), "yes");  // a term without the sun has no lattice
+  // The lines: one per reference (the variants' own too) and term, the lattice on sun and all.
+  Report report;
+  CaseResult c;
+  c.name = "a";
+  MethodResult reference{"reference", "reference", true, {}, {}};
+  MethodResult own{"reference_full_waves30", "reference", false, "reference_full_waves30", {}};
+  MethodResult full{"full", "full", true, {}, {}};
+  for (MethodResult* m : {&reference, &own, &full})
+    for (const char* term : {"sun", "sky", "all"}) {
+      TermResult t;
+      t.term = term;
+      t.samples = m == &full ? 1 : 512;
+      m->terms.push_back(t);
+    }
+  reference.convergence = {{"sun", 0.0}, {"sky", 0.008}, {"all", 0.02}};
+  reference.lattice_convergence = {{"sun", 0.005}};
+  reference.lattice_cells_per_wavelength = {{"sun", 22.6}};
+  own.convergence = {{"sun", 0.0}, {"sky", 0.001}, {"all", 0.001}};
+  own.lattice_convergence = {{"sun", nan}};
+  c.methods = {reference, own, full};
+  report.cases = {c};
+  const std::vector<ConvergenceLine> lines = reference_convergence(report);
+  ASSERT_EQ(lines.size(), 6u);
+  std::vector<std::string> verdicts;
+  for (const ConvergenceLine& l : lines) verdicts.push_back(l.reference + "/" + l.term + " " +
+                                                            l.converged());
+  EXPECT_EQ(verdicts, (std::vector<std::string>{
+                          "reference/sun yes", "reference/sky yes", "reference/all no",
+                          "reference_full_waves30/sun undefined",
+                          "reference_full_waves30/sky yes",
+                          "reference_full_waves30/all undefined"}));
+  EXPECT_EQ(lines[0].lattice_cells_per_wavelength, 22.6);
+  EXPECT_TRUE(std::isnan(lines[1].lattice_cells_per_wavelength));
+  EXPECT_EQ(lines[2].samples, 512);
+}
 }  // namespace
 }  // namespace thalassa::validation

@@ -703,6 +703,17 @@ std::string summary_csv(const Report& report) {
   return csv;
 }
 
+std::string convergence_csv(const Report& report) {
+  std::string csv =
+      csv_line({"case", "reference", "term", "samples", "sample_change", "lattice_change",
+                "lattice_cells_per_wavelength", "converged"});
+  for (const ConvergenceLine& l : reference_convergence(report))
+    csv += csv_line({l.case_name, l.reference, l.term, std::to_string(l.samples),
+                     number(l.sample_change), number(l.lattice_change),
+                     number(l.lattice_cells_per_wavelength), l.converged()});
+  return csv;
+}
+
 std::string claim_csv(const Report& report) {
   std::string csv = csv_line({"case", "camera_height_m", "term", "full_row_error",
                               "basic_row_error", "reference_uncertainty", "verdict"});
@@ -776,6 +787,45 @@ std::string summary_html(const Report& report,
   return h;
 }
 
+// How many references met issue 6's convergence criterion (reference_convergence), and the ones
+// that did not.
+std::string convergence_html(const Report& report) {
+  const std::vector<ConvergenceLine> lines = reference_convergence(report);
+  if (lines.empty()) return {};
+  int yes = 0, no = 0, undefined = 0;
+  for (const ConvergenceLine& l : lines) {
+    const std::string v = l.converged();
+    (v == "yes" ? yes : v == "no" ? no : undefined) += 1;
+  }
+  const std::string percent = short_number(100.0 * kConvergenceTolerance);
+  std::string h = "<h2>The references' convergence</h2>\n<p>Issue 6 asks that doubling the "
+                  "reference's samples, and its sun's lattice, change no image row's total by " +
+                  percent + " % or more (<a href=\"convergence.csv\">convergence.csv</a>). Of " +
+                  std::to_string(lines.size()) + " references and terms: " +
+                  std::to_string(yes) + " within it, <span" + (no ? " class=\"fail\"" : "") +
+                  ">" + std::to_string(no) + " not</span>, " + std::to_string(undefined) +
+                  " undefined (not checked, or a sun with no row lit and resolved).</p>\n";
+  if (no == 0) return h;
+  h += "<table><tr><th>case</th><th>reference</th><th>term</th><th>samples</th><th>last "
+       "doubling of the samples (%)</th><th>sun's lattice against half its cells (%)</th>"
+       "<th>its cells per shortest wavelength</th></tr>\n";
+  const auto cell = [&](double change) {
+    return std::string(std::isfinite(change) && change >= kConvergenceTolerance
+                           ? "<td class=\"fail\">"
+                           : "<td>") +
+           short_number(100.0 * change) + "</td>";
+  };
+  for (const ConvergenceLine& l : lines) {
+    if (l.converged() != "no") continue;
+    h += "<tr><td class=\"t\"><a href=\"#" + html(l.case_name) + "\">" + html(l.case_name) +
+         "</a></td><td class=\"t\">" + html(l.reference) + "</td><td class=\"t\">" +
+         html(l.term) + "</td><td>" + std::to_string(l.samples) + "</td>" +
+         cell(l.sample_change) + (l.with_sun ? cell(l.lattice_change) : "<td></td>") + "<td>" +
+         short_number(l.lattice_cells_per_wavelength) + "</td></tr>\n";
+  }
+  return h + "</table>\n";
+}
+
 std::string index_html(const Report& report,
                        const std::vector<std::vector<std::pair<std::string, std::string>>>& plots,
                        const std::vector<std::pair<std::string, std::string>>& summary_plots) {
@@ -843,6 +893,7 @@ std::string index_html(const Report& report,
          std::to_string(c.exit_status) + "</td><td" + (c.passed() ? ">yes" : " class=\"fail\">no") +
          "</td></tr>\n";
   h += "</table>\n";
+  h += convergence_html(report);
   h += summary_html(report, summary_plots);
   for (std::size_t ci = 0; ci < report.cases.size(); ++ci) {
     const CaseResult& c = report.cases[ci];
@@ -1023,6 +1074,42 @@ std::vector<double> reference_rows_uncertainty(const MethodResult* reference,
   for (const auto& [t, u] : reference->row_uncertainty)
     if (t == term) return u.size() == rows ? u : std::vector<double>(rows, kNaN);
   return std::vector<double>(rows, largest_change(*reference, term));
+}
+
+std::string ConvergenceLine::converged() const {
+  const bool lattice_unknown = with_sun && !std::isfinite(lattice_change);
+  if (std::isfinite(sample_change) && sample_change >= kConvergenceTolerance) return "no";
+  if (with_sun && std::isfinite(lattice_change) && lattice_change >= kConvergenceTolerance)
+    return "no";
+  if (!std::isfinite(sample_change) || lattice_unknown) return "undefined";
+  return "yes";
+}
+
+std::vector<ConvergenceLine> reference_convergence(const Report& report) {
+  std::vector<ConvergenceLine> lines;
+  for (const CaseResult& c : report.cases)
+    for (const MethodResult& m : c.methods) {
+      if (m.method != "reference") continue;
+      for (const TermResult& t : m.terms) {
+        ConvergenceLine line{.case_name = c.name, .reference = m.name, .term = t.term};
+        line.samples = t.samples;
+        for (const auto& [term, change] : m.convergence)
+          if (term == t.term) line.sample_change = change;
+        line.with_sun = t.term == "sun" || t.term == "all";
+        if (line.with_sun) {
+          // One lattice per reference (its largest change, should a report hold more).
+          for (const auto& [term, change] : m.lattice_convergence)
+            if (std::isfinite(change))
+              line.lattice_change = std::isfinite(line.lattice_change)
+                                        ? std::max(line.lattice_change, change)
+                                        : change;
+          for (const auto& [term, cells] : m.lattice_cells_per_wavelength)
+            line.lattice_cells_per_wavelength = cells;
+        }
+        lines.push_back(line);
+      }
+    }
+  return lines;
 }
 
 std::vector<ClaimLine> fig10_claim(const Report& report) {
@@ -1371,6 +1458,7 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
   text("cases.csv", cases_csv(report));
   text("summary.csv", summary_csv(report));
   text("claim.csv", claim_csv(report));
+  text("convergence.csv", convergence_csv(report));
   text("index.html", index_html(report, plot_links, summary_links));
   return written;
 }

@@ -134,6 +134,31 @@ struct SummaryLine {
 };
 std::vector<SummaryLine> summarize(const Report& report);
 
+// Issue 6, point 1: the reference is converged when doubling its samples changes each image
+// row's total by less than this (relative); for its scattered sun, doubling its lattice's cells.
+inline constexpr double kConvergenceTolerance = 0.01;
+
+// Whether each reference met it: one line per reference (the case's, and the variants' own) and
+// term, in the order of the cases and terms. A term with the sun counts the lattice too (one per
+// reference, measured on its first sun term, MethodResult::lattice_convergence).
+struct ConvergenceLine {
+  std::string case_name;
+  std::string reference;  // MethodResult::name
+  std::string term;
+  int samples = 0;  // per pixel, as run
+  // The last doubling of the samples (NaN: not checked, ReferenceSettings::check_convergence)
+  // and, with the sun, the lattice against half its cells (NaN: not measured, or no row lit
+  // and resolved) and its cells per shortest wavelength (NaN: not reported, before stop 25).
+  double sample_change = std::numeric_limits<double>::quiet_NaN();
+  double lattice_change = std::numeric_limits<double>::quiet_NaN();
+  double lattice_cells_per_wavelength = std::numeric_limits<double>::quiet_NaN();
+  bool with_sun = false;
+  // "yes": every test it has is below kConvergenceTolerance; "no": one is not; "undefined":
+  // the samples were not checked, or with the sun the lattice measured no row.
+  std::string converged() const;
+};
+std::vector<ConvergenceLine> reference_convergence(const Report& report);
+
 // Fig. 10's claim (Bruneton et al. 2010; issue 6, point 5): at every distance beyond
 // kClaimMinHeight the full method is closer to the reference than the basic one. Per case with
 // the camera at or above that height and per term: the row error (TermMetrics::row_error, the
@@ -191,6 +216,7 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   plots/<case>_error_time.{dat,gp,png}       relative L1 error against frame time
 //   plots/<case>_<term>_horizon.{dat,gp,png}   near-horizon mean and std (paper 004, fig. 5)
 //   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
+//   convergence.csv                            reference_convergence
 //   plots/summary_<term>_height.{dat,gp,png}   row error against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,
