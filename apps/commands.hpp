@@ -71,6 +71,9 @@ struct ValidateArgs {
   std::vector<std::string> terms;
   // --reference-samples: overrides the suite's reference.pixel_samples; 0: the suite's.
   int reference_samples = 0;
+  // --reference-sun-max-cells-per-wavelength: overrides the suite's
+  // reference.sun_max_cells_per_wavelength; 0: the suite's.
+  double reference_sun_max_cells = 0.0;
   // --resume: keep the cases of the report already in `dir` that were run with the same inputs.
   bool resume = false;
 };

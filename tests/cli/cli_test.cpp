@@ -339,7 +339,11 @@ TEST_F(Cli, ValidateWritesTheReport) {
   })");
   // --reference-samples replaces the suite's reference.pixel_samples (4); the sky alone keeps
   // reference.pixel_samples_without_sun (8).
-  const Result r = run("validate suite.json -o report --reference-samples 2");
+  // --reference-sun-max-cells-per-wavelength replaces the suite's most cells (here the start,
+  // 16: no doubling, and nothing to pay for it).
+  const Result r = run(
+      "validate suite.json -o report --reference-samples 2 "
+      "--reference-sun-max-cells-per-wavelength 16");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* file : {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv",
                            "cases.csv", "images/near_reference_sun.exr", "images/near_full_all.png",
@@ -350,6 +354,8 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(results["cases"].size(), 2u);
   EXPECT_EQ(results["cases"][1]["exit_status"], 2);
   EXPECT_EQ(results["reference"]["pixel_samples"], 2);
+  EXPECT_EQ(results["reference"]["sun_max_cells_per_wavelength"], 16.0);
+  EXPECT_EQ(results["cases"][0]["methods"][0]["lattice_cells_per_wavelength"]["sun"], 16.0);
   const auto& reference_terms = results["cases"][0]["methods"][0]["terms"];
   EXPECT_EQ(reference_terms[0]["samples"], 2);                             // sun
   EXPECT_EQ(reference_terms[1]["samples"], 8);                             // sky
@@ -444,6 +450,11 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   const Result range = run("validate -o out --reference-samples 0");
   EXPECT_EQ(range.status, 2) << range.err;
   EXPECT_NE(range.err.find("--reference-samples"), std::string::npos) << range.err;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  // The sun's lattice may only double up from where the suite starts it (16 per wavelength).
+  expect_invalid(run("validate -o out --reference-sun-max-cells-per-wavelength 8"),
+                 {"--reference-sun-max-cells-per-wavelength: expected at least the suite's "
+                  "reference.sun_cells_per_wavelength (16), got 8"});
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   // A case that expects to be refused but renders: the run ends with status 1.
   write("wrong.json", R"({"suite": "wrong", "base": {"image.width": 16, "image.height": 8},
