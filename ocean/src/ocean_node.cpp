@@ -683,17 +683,21 @@ class OceanNode final : public gl::Node {
       glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
     }
     const std::uint64_t segments = (cap + scatter_segment_ - 1) / scatter_segment_;
-    // `invocations` invocations of `program` from 0, in batches (first_invocation each).
-    const auto dispatch = [](GLuint program, GLint first, std::uint64_t invocations) {
+    // `invocations` invocations of `program` from 0, in batches (first_invocation each; the
+    // shader ignores the last work group's invocations from invocation_end on).
+    const auto dispatch = [](GLuint program, std::uint64_t invocations) {
+      const GLint first = glGetUniformLocation(program, "first_invocation");
+      const GLint end = glGetUniformLocation(program, "invocation_end");
       for (std::uint64_t start = 0; start < invocations; start += kScatterBatch) {
-        glProgramUniform1ui(program, first, static_cast<GLuint>(start));
         const std::uint64_t count = std::min(kScatterBatch, invocations - start);
+        glProgramUniform1ui(program, first, static_cast<GLuint>(start));
+        glProgramUniform1ui(program, end, static_cast<GLuint>(start + count));
         glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
       }
     };
     // Footprints' pass: one invocation per footprint.
     glUseProgram(programs[0]);
-    dispatch(programs[0], glGetUniformLocation(programs[0], "first_invocation"), footprint_count_);
+    dispatch(programs[0], footprint_count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
     // Cells' pass: cap x segments invocations per footprint (at most 1024 x 1024), whole
     // footprints per batch, so that the shader's 32-bit invocation index counts one batch (the
@@ -702,12 +706,11 @@ class OceanNode final : public gl::Node {
     const std::uint64_t footprints_per_batch =
         std::max<std::uint64_t>(1, kScatterBatch / per_footprint);
     glUseProgram(programs[1]);
-    const GLint first_cell = glGetUniformLocation(programs[1], "first_invocation");
     const GLint first_footprint = glGetUniformLocation(programs[1], "first_footprint");
     for (std::uint64_t footprint = 0; footprint < footprint_count_;
          footprint += footprints_per_batch) {
       glProgramUniform1ui(programs[1], first_footprint, static_cast<GLuint>(footprint));
-      dispatch(programs[1], first_cell,
+      dispatch(programs[1],
                std::min(footprints_per_batch, footprint_count_ - footprint) * per_footprint);
     }
   }

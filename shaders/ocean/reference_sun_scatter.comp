@@ -71,7 +71,11 @@
 // segment) x reference_max_cells + row, segments = ceil(reference_max_cells /
 // reference_segment). The CPU dispatches whole footprints per batch from first_footprint, so that
 // the 32-bit id counts one batch, not the lattice (whose slots, footprints x cap x segments,
-// passed 2^32 on the 4 m cases of the 20 m/s sea at 8 x 8 subcells: stop 24).
+// passed 2^32 on the 4 m cases of the 20 m/s sea at 8 x 8 subcells: stop 24). A dispatch is
+// whole work groups of 64: the invocations past its count (id >= invocation_end) do nothing. In
+// pass 2 they would take the next batch's first footprint's rows, which that batch deposits
+// again: from stop 24 to 25 every cap not a multiple of 64 (181, the coarser lattice of 256;
+// 362) doubled up to 63 rows of cells of one footprint per batch, and moved rows by up to 3 %.
 //
 // Why segments. llvmpipe (Mesa's CPU renderer, the tests' and CI's) ends every loop of a shader
 // invocation once the invocation has run 65535 loop iterations in all (gallivm's
@@ -102,6 +106,7 @@ uniform int reference_refine;
 uniform float slope_curvature;
 uniform int margin;               // pixels added beyond each edge of the image
 uniform uint first_invocation;    // of this dispatch (the CPU dispatches in batches)
+uniform uint invocation_end;      // and one past its last (first_invocation + its count)
 uniform uint first_footprint;     // pass 2: the batch's first footprint
 uniform int reference_segment;    // most cells of a row per invocation (see above)
 // m: a bound on the displacement of every wave together (sum of amplitudes), for the margin's
@@ -402,6 +407,7 @@ layout(std430, binding = 8) buffer ReferenceFootprints { vec4 footprints[]; };
 void main() {
   const int cap = max(reference_max_cells, 1);
   const uint footprint = first_invocation + gl_GlobalInvocationID.x;
+  if (footprint >= invocation_end) return;
   const int columns = int(frame_viewport.x) + 2 * margin;
   const int rows = int(frame_viewport.y) + 2 * margin;
   if (footprint >= uint(columns * rows)) return;
@@ -467,6 +473,7 @@ void main() {
   // Consecutive invocations take consecutive rows of one segment: the SIMD lanes of a work group
   // (llvmpipe runs 8 in lockstep) are then active or idle together.
   const uint id = first_invocation + gl_GlobalInvocationID.x;
+  if (id >= invocation_end) return;
   const int j = int(id % uint(cap));
   const uint segment_id = id / uint(cap);
   const int segment = int(segment_id % uint(segments));

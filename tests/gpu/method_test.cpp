@@ -384,27 +384,32 @@ TEST(OceanMethods, RefinedSunLatticeIsTheFinerLattice) {
 // 2^32 on the default suite's 4 m cases of the 20 m/s sea at 8 x 8 subcells (stop 24). The
 // lattice does not depend on the cap where no footprint reaches it, so two caps draw the same
 // lattice through batches of 16 times as many footprints apart: their resolved rows agree to the
-// float sums' order.
+// float sums' order. And a cap that is not a multiple of 64 (1000) ends each batch inside a work
+// group, whose invocations past the batch must do nothing: from stop 24 to 25 they drew the
+// next batch's first footprint's first rows twice (a row moved by 3.3 % at the coarser lattice
+// of 256 cells, 181, on wind3_4m_low_sun).
 TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(100.0);
   scene.image.width = 24;
   scene.image.height = 16;
   scene.ocean.lambda_min = 2.0;
-  const SunRows small = reference_sun_rows(*context, scene, 4, 4, 256);
   const SunRows large = reference_sun_rows(*context, scene, 4, 4, 1024);
-  ASSERT_EQ(small.resolved.size(), std::size_t(scene.image.height));
-  int compared = 0;
-  double worst = 0.0;
-  for (int y = 0; y < scene.image.height; ++y)
-    if (small.resolved[y] >= 0.99 && large.resolved[y] >= 0.99 && large.totals[y] > 0.0) {
-      worst = std::max(worst, std::abs(small.totals[y] / large.totals[y] - 1.0));
-      ++compared;
-    }
-  std::printf("caps 256 and 1024: %d rows resolved by both, worst difference %.2e\n", compared,
-              worst);
-  EXPECT_GE(compared, 8);
-  EXPECT_LT(worst, 1e-4);
+  for (const int cap : {256, 1000}) {
+    const SunRows small = reference_sun_rows(*context, scene, 4, 4, cap);
+    ASSERT_EQ(small.resolved.size(), std::size_t(scene.image.height));
+    int compared = 0;
+    double worst = 0.0;
+    for (int y = 0; y < scene.image.height; ++y)
+      if (small.resolved[y] >= 0.99 && large.resolved[y] >= 0.99 && large.totals[y] > 0.0) {
+        worst = std::max(worst, std::abs(small.totals[y] / large.totals[y] - 1.0));
+        ++compared;
+      }
+    std::printf("caps %d and 1024: %d rows resolved by both, worst difference %.2e\n", cap,
+                compared, worst);
+    EXPECT_GE(compared, 8) << cap;
+    EXPECT_LT(worst, 1e-4) << cap;
+  }
 }
 
 // The reference's sun doubles its lattice (cells per wavelength and per pixel side times sqrt 2)
