@@ -314,15 +314,9 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
   EXPECT_EQ(largest_sample_change, stats.sample_row_change);
 }
 
-// The reference's sun alone on `scene` (4 samples, its lattice's convergence not measured), at
-// `cells_per_wavelength` cells per shortest wavelength refined `refine` x `refine`, at most `cap`
-// per pixel side: each image row's total (green), top first, and the rows' resolved fractions.
-struct SunRows {
-  std::vector<double> totals, resolved;
-  int refine = 0;  // the subcells per side that ran (RenderStats::sun_lattice_refine)
-};
-SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
-                           int refine, int cap) {
+// The reference's sun alone (4 samples), at `cells_per_wavelength` cells per shortest
+// wavelength refined `refine` x `refine`, at most `cap` per pixel side.
+RendererOptions reference_sun_options(double cells_per_wavelength, int refine, int cap) {
   RendererOptions options;
   options.method = ocean::OceanMethod::reference;
   options.terms = {true, false, false, false};
@@ -331,15 +325,31 @@ SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_
   options.reference.sun_cells = cap;
   options.reference.sun_cells_per_wavelength = cells_per_wavelength;
   options.reference.sun_refine = refine;
+  return options;
+}
+
+// Each image row's total (green), top first.
+std::vector<double> green_row_totals(const Image& image) {
+  std::vector<double> totals(image.height, 0.0);
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) totals[y] += image.pixel(x, y)[1];
+  return totals;
+}
+
+// The reference's sun alone on `scene` (reference_sun_options, its lattice's convergence not
+// measured): each image row's total (green), top first, and the rows' resolved fractions.
+struct SunRows {
+  std::vector<double> totals, resolved;
+  int refine = 0;  // the subcells per side that ran (RenderStats::sun_lattice_refine)
+};
+SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
+                           int refine, int cap) {
+  RendererOptions options = reference_sun_options(cells_per_wavelength, refine, cap);
   options.reference.measure_lattice = false;
   Renderer renderer(context, scene, options);
   renderer.render();
-  const Image image = renderer.image();
-  SunRows rows{std::vector<double>(image.height, 0.0), renderer.stats().resolved_rows,
-               renderer.stats().sun_lattice_refine};
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) rows.totals[y] += image.pixel(x, y)[1];
-  return rows;
+  return {green_row_totals(renderer.image()), renderer.stats().resolved_rows,
+          renderer.stats().sun_lattice_refine};
 }
 
 // The refinement near the mirror slope (shaders/ocean/reference_sun_scatter.comp, ScatterCell)
@@ -426,14 +436,7 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   scene.ocean.lambda_min = 2.0;
   const auto render = [&](double cells_per_wavelength, int cells, double most,
                           double tolerance = 0.01) {
-    RendererOptions options;
-    options.method = ocean::OceanMethod::reference;
-    options.terms = {true, false, false, false};
-    options.reference.min_samples = 4;
-    options.reference.max_samples = 4;
-    options.reference.sun_cells = cells;
-    options.reference.sun_cells_per_wavelength = cells_per_wavelength;
-    options.reference.sun_refine = 2;
+    RendererOptions options = reference_sun_options(cells_per_wavelength, 2, cells);
     options.reference.sun_max_cells_per_wavelength = most;
     options.reference.row_tolerance = tolerance;  // the samples are fixed: the lattice's alone
     Renderer renderer(*context, scene, options);
@@ -485,15 +488,10 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   EXPECT_EQ(direct.sun_lattice_doublings, 0);
   EXPECT_NEAR(direct.sun_lattice_row_change, doubled.sun_lattice_row_change, 1e-4);
   EXPECT_EQ(direct.sun_lattice_rows, doubled.sun_lattice_rows);
+  const std::vector<double> a = green_row_totals(image), b = green_row_totals(direct_image);
   double worst = 0.0;
-  for (int y = 0; y < image.height; ++y) {
-    double a = 0.0, b = 0.0;
-    for (int x = 0; x < image.width; ++x) {
-      a += image.pixel(x, y)[1];
-      b += direct_image.pixel(x, y)[1];
-    }
-    if (a > 0.0) worst = std::max(worst, std::abs(b / a - 1.0));
-  }
+  for (std::size_t y = 0; y < a.size(); ++y)
+    if (a[y] > 0.0) worst = std::max(worst, std::abs(b[y] / a[y] - 1.0));
   EXPECT_LT(worst, 1e-4);
 }
 
