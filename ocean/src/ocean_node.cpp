@@ -603,7 +603,9 @@ class OceanNode final : public gl::Node {
     // against the lattice before it, or the most cells per wavelength, or kScatterMaxCells per
     // pixel side, is reached. The cap grows with the cells (times sqrt 2) so that every lattice
     // resolves the same footprints, hence the same rows.
-    double cells_per_wavelength = std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+    const double first_cells_per_wavelength =
+        std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+    double cells_per_wavelength = first_cells_per_wavelength;
     const double most_cells_per_wavelength =
         std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength, 64.0);
     const int first_cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
@@ -619,14 +621,19 @@ class OceanNode final : public gl::Node {
     for (;;) {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
       measure_lattice(inputs, measure);
-      // (From the first: rounding each doubling's cap would drift, 32 to 129 in four.)
-      const double finer = cells_per_wavelength * std::sqrt(2.0);
-      const int finer_cap = static_cast<int>(
-          std::lround(first_cap * std::pow(2.0, 0.5 * (lattice_doublings_ + 1))));
-      // (1 + 1e-9: two doublings of 16 reach 32 only to rounding.)
+      // Both from the first lattice: rounding each doubling's cap would drift (32 to 129 in
+      // four), and sqrt 2 times sqrt 2 is 2 + 4e-16, so four doublings of 16 by sqrt 2 gave
+      // 64.00000000000001, past the 64 that ReferenceSampling allows when validate redrew that
+      // lattice for its later terms (the first GPU run, stop 26). pow(2, whole) is exact.
+      const double growth = std::pow(2.0, 0.5 * (lattice_doublings_ + 1));
+      const int finer_cap = static_cast<int>(std::lround(first_cap * growth));
+      // (1 + 1e-9: a most given as a printed 16 sqrt 2, 22.63, is reached.)
+      const double finer_unclamped = first_cells_per_wavelength * growth;
       if (!measure || lattice_row_change_ < options_.reference_lattice_tolerance ||
-          finer > most_cells_per_wavelength * (1.0 + 1e-9) || finer_cap > kScatterMaxCells)
+          finer_unclamped > most_cells_per_wavelength * (1.0 + 1e-9) ||
+          finer_cap > kScatterMaxCells)
         break;
+      const double finer = std::min(finer_unclamped, most_cells_per_wavelength);
       // The finer lattice becomes the coarser one it is measured against.
       std::swap(reference_sun_buffer_, coarse_sun_buffer_);
       cells_per_wavelength = finer;

@@ -449,6 +449,7 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   const auto [start, start_image] = render(2.0, 32, 0.0, kTolerance);
   const auto [doubled, image] = render(2.0, 32, 8.0, kTolerance);
   const auto [one, one_image] = render(2.0, 32, 2.0 * std::sqrt(2.0));
+  const auto [two, two_image] = render(2.0, 32, 4.0);
   std::printf(
       "lattice at 2 per wavelength: %.3g on %d rows; doubled %d times to %.3g per wavelength "
       "and %d cells a side: %.3g on %d rows, %.0f ms (%.0f ms undoubled)\n",
@@ -482,6 +483,11 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   EXPECT_NEAR(one.sun_lattice_cells_per_wavelength, 2.0 * std::sqrt(2.0), 1e-9);
   EXPECT_EQ(one.sun_lattice_cells, 45);
   EXPECT_GE(one.sun_lattice_row_change, 0.01);
+  // Allowed two, it ends at the most exactly (sqrt 2 times sqrt 2 is 2 + 4e-16: a lattice
+  // past the most fails ReferenceSampling's bounds when validate redraws it at 64).
+  EXPECT_EQ(two.sun_lattice_doublings, 2);
+  EXPECT_EQ(two.sun_lattice_cells_per_wavelength, 4.0);
+  EXPECT_EQ(two.sun_lattice_cells, 64);
   // The lattice it ended with, drawn directly.
   const auto [direct, direct_image] = render(doubled.sun_lattice_cells_per_wavelength,
                                             doubled.sun_lattice_cells, 0.0, kTolerance);
