@@ -18,6 +18,7 @@ std::string stats_json(const RenderStats& stats) {
   json["frames"] = stats.frames;
   json["frame_ms"] = stats.frame_ms;
   json["timing"] = stats.timing;
+  json["timing_fallback_frames"] = stats.timing_fallback_frames;
   json["passes"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.passes) json["passes"][name] = ms;
   json["resolved_waves"] = stats.resolved_waves;

@@ -4,6 +4,19 @@ namespace thalassa::gl {
 
 namespace {
 constexpr double kNanosecondsPerMillisecond = 1e6;
+// The GPU's and the host's clocks tick at rates that may differ by far less than this, and the
+// host's bound is read after the last result: 1 % and 0.1 ms of slack keep a true span inside.
+constexpr double kHostBoundRelativeSlack = 0.01;
+constexpr double kHostBoundSlackMs = 0.1;
+}  // namespace
+
+std::optional<double> timestamp_span_ms(std::uint64_t from, std::uint64_t to,
+                                        double host_bound_ms) {
+  if (from == 0 || to == 0 || to < from) return std::nullopt;
+  const double ms = double(to - from) / kNanosecondsPerMillisecond;
+  if (!(ms <= host_bound_ms * (1.0 + kHostBoundRelativeSlack) + kHostBoundSlackMs))
+    return std::nullopt;
+  return ms;
 }
 
 TimingSource GpuTimer::source_for_renderer(const std::string& gl_renderer) {
@@ -35,11 +48,13 @@ std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
   std::vector<GLuint64> stamps(queries_.size(), 0);
   for (std::size_t i = 0; i < queries_.size(); ++i)
     glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &stamps[i]);  // waits
-  // Timestamps are monotonic; a driver that returns garbage must not give negative times.
+  const double host_ms =
+      wall_.empty() ? 0.0
+                    : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
+                                                                wall_.front())
+                          .count();
   auto query_ms = [&](std::size_t from, std::size_t to) {
-    return stamps[to] >= stamps[from]
-               ? double(stamps[to] - stamps[from]) / kNanosecondsPerMillisecond
-               : 0.0;
+    return timestamp_span_ms(stamps[from], stamps[to], host_ms);
   };
   auto wall_ms = [&](std::size_t from, std::size_t to) {
     if (source_ != TimingSource::FinishWallClock) return 0.0;  // unsynchronised: meaningless
@@ -47,10 +62,13 @@ std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
   };
   std::vector<PassTime> passes;
   for (std::size_t i = 1; i < stamps.size(); ++i)
-    passes.push_back({names_[i - 1], query_ms(i - 1, i), wall_ms(i - 1, i)});
+    passes.push_back({names_[i - 1], query_ms(i - 1, i).value_or(0.0), wall_ms(i - 1, i)});
   frame = {"frame", 0.0, 0.0};
-  if (stamps.size() > 1)
-    frame = {"frame", query_ms(0, stamps.size() - 1), wall_ms(0, wall_.size() - 1)};
+  if (stamps.size() > 1) {
+    const std::optional<double> span = query_ms(0, stamps.size() - 1);
+    if (!span && source_ == TimingSource::TimestampQuery) ++fallback_frames_;
+    frame = {"frame", span.value_or(host_ms), wall_ms(0, wall_.size() - 1)};
+  }
   return passes;
 }
 

@@ -130,6 +130,7 @@ struct Renderer::Impl {
   std::vector<std::string> pass_order;
   gl::VertexArray present_vao;
   gl::GpuTimer timer;
+  int timer_fallbacks_before = 0;  // the compiling frame's, not counted in the statistics
   std::shared_ptr<atmosphere::SkyProvider> provider;
   double provider_ms = 0.0;   // creating the provider: tables computed or loaded, uploaded
   double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
@@ -438,6 +439,7 @@ Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions optio
   impl_->draw_frame();
   impl_->frame_ms.clear();
   impl_->pass_ms.clear();
+  impl_->timer_fallbacks_before = impl_->timer.fallback_frames();
 }
 
 // GL objects are deleted in the renderer's own context (a no-op for a host's context, which
@@ -513,6 +515,7 @@ RenderStats Renderer::stats() const {
   stats.frame_ms = median(m.frame_ms);
   stats.timing = m.timer.source() == gl::TimingSource::FinishWallClock ? "finish_wall_clock"
                                                                        : "gl_timestamp_query";
+  stats.timing_fallback_frames = m.timer.fallback_frames() - m.timer_fallbacks_before;
   for (const auto& name : m.pass_order) {
     auto it = m.pass_ms.find(name);
     if (it != m.pass_ms.end()) stats.passes.emplace_back(name, median(it->second));

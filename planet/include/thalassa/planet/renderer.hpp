@@ -36,6 +36,10 @@ struct RenderStats {
   // "finish_wall_clock" on Mesa's software rasterisers, whose timestamp queries miss the
   // rasterisation (see thalassa/engine/gl/gpu_timer.hpp).
   std::string timing;
+  // Frames (a reference's samples each count) whose timestamp queries were unusable: their
+  // time is the host's, from the frame's first command to its results read back, an upper
+  // bound (thalassa/engine/gl/gpu_timer.hpp).
+  int timing_fallback_frames = 0;
   std::vector<std::pair<std::string, double>> passes;  // pass -> GPU ms, median over frames
   int resolved_waves = 0;          // waves summed as geometry or normals (surface mode)
   std::vector<std::string> built;  // modules and shader features this scene caused to exist
