@@ -340,6 +340,18 @@ TEST(ValidationMetrics, RelativeErrorOfABlackReferenceIsUndefinedUnlessTheMethod
   EXPECT_DOUBLE_EQ(e.mean_abs.l, 0.125);  // 0.5 over 4 pixels, defined
 }
 
+// No pixel compared (a reference whose sun resolves no row of the sea): no error, not a
+// perfect 0 (the H200's full_waves120 "all" on wind10_100m_high_sun read 0 over 0 pixels).
+TEST(ValidationMetrics, RelativeErrorOverNoPixelIsUndefined) {
+  const Image a = random_image(3, 2, 1), b = random_image(3, 2, 2);
+  const PixelMask none{3, 2, std::vector<std::uint8_t>(6, 0)};
+  const ErrorStats e = relative_errors(a, b, none);
+  EXPECT_EQ(e.pixels, 0);
+  EXPECT_TRUE(std::isnan(e.relative_l1.l));
+  EXPECT_TRUE(std::isnan(e.relative_rms.l));
+  EXPECT_TRUE(std::isnan(e.mean_abs.l));
+}
+
 // A reference term that no compared pixel shows in its PNG (the sun's Gaussian tail where the
 // sea reflects no glint into the view: 1e-25 against the methods' 1e-7) has no relative error,
 // row ratio or row error: their ratio of two invisible tails read 3e17 in stop 22's report.

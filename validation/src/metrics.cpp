@@ -269,9 +269,13 @@ ErrorStats relative_errors(const Image& method, const Image& reference, const Pi
       sum_ref = each(std::plus<>(), sum_ref, r);
     }
   }
-  stats.relative_l1 = each(relative, abs_diff, abs_ref);
+  // Over no pixel, undefined: relative(0, 0) is 0, which would read as a perfect match.
+  const ChannelValues none{kNaN, kNaN, kNaN, kNaN};
+  stats.relative_l1 = stats.pixels > 0 ? each(relative, abs_diff, abs_ref) : none;
   stats.relative_rms =
-      each([](double n, double d) { return std::sqrt(relative(n, d)); }, sq_diff, sq_ref);
+      stats.pixels > 0
+          ? each([](double n, double d) { return std::sqrt(relative(n, d)); }, sq_diff, sq_ref)
+          : none;
   const double n = stats.pixels > 0 ? stats.pixels : kNaN;
   const auto per_pixel = [n](double s, double) { return s / n; };
   stats.mean_abs = each(per_pixel, abs_diff, abs_diff);

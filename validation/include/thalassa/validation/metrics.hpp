@@ -175,7 +175,7 @@ double row_error_difference_bound(const std::vector<ChannelValues>& a,
 struct ErrorStats {
   int pixels = 0;  // pixels inside the mask
   // sum |m - r| / sum |r|: the relative L1 error (NaN when the reference is 0 everywhere in the
-  // mask and the method is not; 0 when both are).
+  // mask and the method is not; 0 when both are; NaN over no pixel).
   ChannelValues relative_l1;
   // sqrt(sum (m - r)^2 / sum r^2): the relative RMS error (same conventions).
   ChannelValues relative_rms;
