@@ -31,6 +31,7 @@ struct RenderArgs {
   double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
   int sun_refine = 4;                       // the reference's sun: subcells per side near glints
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)
+  bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
 };
 

@@ -40,6 +40,7 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_cells_per_wavelength"] = stats.sun_lattice_cells_per_wavelength;
     json["sun_lattice_cells"] = stats.sun_lattice_cells;
     json["sun_lattice_doublings"] = stats.sun_lattice_doublings;
+    json["sun_lattice_float_atomics"] = stats.sun_lattice_float_atomics;
   }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
   json["sky_provider"] = stats.sky_provider;
@@ -118,6 +119,11 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "sun_lattice_cells_per_wavelength says where it stopped")
       ->check(CLI::Range(0.0, 64.0))
       ->capture_default_str();
+  render->add_flag("--sun-swap-atomics", args.sun_swap_atomics,
+                   "The reference's sun, scattered: add its cells' shares by compare-and-swap "
+                   "even where the driver has float atomics (GL_NV_shader_atomic_float); the "
+                   "same image to float rounding, for timing the two (--stats "
+                   "sun_lattice_ms, sun_lattice_float_atomics)");
   render
       ->add_option("--sun-refine", args.sun_refine,
                    "The reference's sun, scattered: cells whose slopes come near the mirror slope "
@@ -149,6 +155,7 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
   renderer_options.reference.sun_refine = args.sun_refine;
   renderer_options.reference.sun_max_cells_per_wavelength = args.sun_max_cells_per_wavelength;
+  renderer_options.reference.sun_float_atomics = !args.sun_swap_atomics;
   renderer_options.reference.sun = *parse_reference_sun(args.reference_sun);  // CLI11 checked
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight

@@ -295,7 +295,8 @@ class OceanNode final : public gl::Node {
             {"reference_sun.refine", double(scatter_refine_)},
             {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
             {"reference_sun.cells", double(lattice_cap_)},
-            {"reference_sun.doublings", double(lattice_doublings_)}};
+            {"reference_sun.doublings", double(lattice_doublings_)},
+            {"reference_sun.float_atomics", float_atomics_ ? 1.0 : 0.0}};
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
@@ -508,6 +509,8 @@ class OceanNode final : public gl::Node {
     const auto start = std::chrono::steady_clock::now();
     gl::Defines defines;
     if (local_features_) local_features_->add_defines(defines);
+    float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
+    if (float_atomics_) defines["REFERENCE_FLOAT_ATOMICS"] = "1";
     gl::Defines footprint_defines = defines;
     footprint_defines["REFERENCE_FOOTPRINT_PASS"] = "1";
     // The same source twice: the footprints' pass, then the cells'; both take every uniform.
@@ -837,6 +840,7 @@ class OceanNode final : public gl::Node {
   double lattice_cells_per_wavelength_ = 0.0;
   int lattice_cap_ = 0;
   int lattice_doublings_ = 0;
+  bool float_atomics_ = false;  // the scatter adds with GL_NV_shader_atomic_float
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests
 };

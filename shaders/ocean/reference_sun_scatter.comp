@@ -50,10 +50,15 @@
 // 20 degrees below the horizon 10-30 % brighter (docs/validation.md): the glint's facets there
 // tilt away from the eye, onto the backs of the waves.
 //
-// Output: per pixel (window coordinates, row-major from the bottom row), four floats stored as
-// their bits in `sums` (atomic adds by compare-and-swap; GL has no float atomics): sum omega sun,
-// sum omega, the part of sum omega from footprints over the cap (unresolved), and the solid
-// angle of the cells hidden behind the grid's crests (not in sum omega).
+// Output: per pixel (window coordinates, row-major from the bottom row), four floats in `sums`:
+// sum omega sun, sum omega, the part of sum omega from footprints over the cap (unresolved), and
+// the solid angle of the cells hidden behind the grid's crests (not in sum omega). Added by the
+// float atomics of GL_NV_shader_atomic_float where the context has them
+// (REFERENCE_FLOAT_ATOMICS), else by compare-and-swap on their bits (core GL has no float
+// atomics): the same float additions, in an order that neither fixes.
+#ifdef REFERENCE_FLOAT_ATOMICS
+#extension GL_NV_shader_atomic_float : require
+#endif
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
@@ -89,7 +94,11 @@ layout(local_size_x = 64) in;
 // Two vec4 per wave, longest first (see ocean_geometry.frag).
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
 // 4 per pixel of the image (see above): the bits of floats.
+#ifdef REFERENCE_FLOAT_ATOMICS
+layout(std430, binding = 7) coherent buffer ReferenceSunSums { float sums[]; };
+#else
 layout(std430, binding = 7) coherent buffer ReferenceSunSums { uint sums[]; };
+#endif
 
 uniform int wave_count;
 uniform vec2 downwind;  // unit, east-north-up
@@ -134,6 +143,13 @@ uniform float n_max;
 int held_pixel[2] = int[2](-1, -1);
 vec4 held[2] = vec4[2](vec4(0.0), vec4(0.0));
 
+#ifdef REFERENCE_FLOAT_ATOMICS
+void AtomicAdd(uint index, float value) {
+  if (value != 0.0) atomicAdd(sums[index], value);
+}
+#else
+// Under contention each round lets one invocation through (the H200 took 6-30 s per sun term
+// with this version, stop 26, not profiled). Its rounds count toward llvmpipe's loop limit.
 void AtomicAdd(uint index, float value) {
   if (value == 0.0) return;
   uint expected = sums[index];
@@ -144,6 +160,7 @@ void AtomicAdd(uint index, float value) {
     expected = previous;
   }
 }
+#endif
 
 void Flush(int slot) {
   if (held_pixel[slot] >= 0)

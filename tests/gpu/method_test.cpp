@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "thalassa/engine/gl_info.hpp"
 #include "thalassa/planet/renderer.hpp"
 
 namespace thalassa {
@@ -341,15 +342,17 @@ std::vector<double> green_row_totals(const Image& image) {
 struct SunRows {
   std::vector<double> totals, resolved;
   int refine = 0;  // the subcells per side that ran (RenderStats::sun_lattice_refine)
+  bool float_atomics = false;  // RenderStats::sun_lattice_float_atomics
 };
 SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
-                           int refine, int cap) {
+                           int refine, int cap, bool float_atomics = true) {
   RendererOptions options = reference_sun_options(cells_per_wavelength, refine, cap);
   options.reference.measure_lattice = false;
+  options.reference.sun_float_atomics = float_atomics;
   Renderer renderer(context, scene, options);
   renderer.render();
   return {green_row_totals(renderer.image()), renderer.stats().resolved_rows,
-          renderer.stats().sun_lattice_refine};
+          renderer.stats().sun_lattice_refine, renderer.stats().sun_lattice_float_atomics};
 }
 
 // The refinement near the mirror slope (shaders/ocean/reference_sun_scatter.comp, ScatterCell)
@@ -420,6 +423,41 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
     EXPECT_GE(compared, 8) << cap;
     EXPECT_LT(worst, 1e-4) << cap;
   }
+}
+
+// The scatter adds its cells' shares with float atomics where the context has
+// GL_NV_shader_atomic_float (llvmpipe and NVIDIA's driver do), else by compare-and-swap: the same
+// float additions in another order, so the same rows to float rounding (measured 0 on llvmpipe,
+// whose order is the same for both; a GPU's differs between runs of either).
+TEST(OceanMethods, ScatteredSunIsTheSameWithFloatAtomics) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.image.width = 24;
+  scene.image.height = 16;
+  scene.ocean.lambda_min = 2.0;
+  const SunRows swapped = reference_sun_rows(*context, scene, 4, 4, 256, false);
+  const SunRows added = reference_sun_rows(*context, scene, 4, 4, 256, true);
+  EXPECT_FALSE(swapped.float_atomics);
+  context->make_current();
+  const GlInfo info = query_gl_info();
+  const auto atomics = std::find_if(info.capabilities.begin(), info.capabilities.end(),
+                                    [](const auto& c) { return c.first.starts_with("float atomics"); });
+  ASSERT_NE(atomics, info.capabilities.end());
+  EXPECT_EQ(added.float_atomics, atomics->second == "yes");
+  ASSERT_EQ(swapped.totals.size(), added.totals.size());
+  EXPECT_EQ(swapped.resolved, added.resolved);
+  double brightest = 0.0, worst = 0.0;
+  int lit = 0;
+  for (double v : swapped.totals) brightest = std::max(brightest, v);
+  for (std::size_t y = 0; y < swapped.totals.size(); ++y)
+    if (swapped.totals[y] > 1e-3 * brightest) {
+      worst = std::max(worst, std::abs(added.totals[y] / swapped.totals[y] - 1.0));
+      ++lit;
+    }
+  std::printf("float atomics %s: %d lit rows, worst difference from compare-and-swap %.2e\n",
+              added.float_atomics ? "used" : "not available", lit, worst);
+  EXPECT_GE(lit, 8);
+  EXPECT_LT(worst, 1e-5);
 }
 
 // The reference's sun doubles its lattice (cells per wavelength and per pixel side times sqrt 2)

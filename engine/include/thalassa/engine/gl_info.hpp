@@ -14,7 +14,8 @@ struct GlInfo {
   std::string renderer;      // GL_RENDERER
   // The capabilities the engine relies on, each with "yes"/"no" or a number, in a fixed order:
   // core profile 4.5, float render targets, compute shaders, clip control (reversed-Z), fp64,
-  // anisotropic filtering (max), timer queries, max texture size, max viewport.
+  // timer queries, float atomics (optional: the reference's sun scatter uses them where present),
+  // anisotropic filtering (max), max texture size, max array texture layers, max viewport.
   std::vector<std::pair<std::string, std::string>> capabilities;
   // Names of required capabilities that are missing (empty when the engine can run).
   std::vector<std::string> missing;

@@ -80,6 +80,7 @@ struct RenderStats {
   double sun_lattice_cells_per_wavelength = 0.0;
   int sun_lattice_cells = 0;
   int sun_lattice_doublings = 0;
+  bool sun_lattice_float_atomics = false;  // its sums added by float atomics (sun_float_atomics)
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
@@ -170,6 +171,11 @@ struct ReferenceSampling {
   // the lattice before it. 0 (the default): none, the lattice as sun_cells_per_wavelength says;
   // else in [sun_cells_per_wavelength, 64].
   double sun_max_cells_per_wavelength = 0.0;
+  // Scattered: add the cells' shares with the float atomics of GL_NV_shader_atomic_float where
+  // the driver has them (NVIDIA's, Mesa's llvmpipe), else by compare-and-swap on their bits. The
+  // same sums to float rounding in either order; under contention, one atomic against a retry
+  // loop (the H200 took 6-30 s per sun term with the loop alone, stop 26).
+  bool sun_float_atomics = true;
 };
 
 struct RendererOptions {

@@ -56,6 +56,9 @@ struct OceanNodeOptions {
   // 1024 cells per pixel side (ReferenceSampling::sun_max_cells_per_wavelength).
   double reference_max_cells_per_wavelength = 0.0;
   double reference_lattice_tolerance = 0.01;
+  // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
+  // (ReferenceSampling::sun_float_atomics), else compare-and-swap.
+  bool reference_float_atomics = true;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
