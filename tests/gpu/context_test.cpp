@@ -4,6 +4,8 @@
 
 #include <glad/gl.h>
 
+#include <cstdlib>
+
 #include "test_support.hpp"
 
 namespace thalassa {
@@ -38,6 +40,24 @@ TEST(Context, HeadlessDefaultWorksWithoutDisplay) {
   auto context = create_headless_context({}, &log);
   EXPECT_NE(context->backend(), Backend::Glfw);
   EXPECT_NE(context->backend(), Backend::Host);
+}
+
+// THALASSA_GL_DEBUG=1 logs the driver's messages on stderr (GL_DEBUG_OUTPUT) whatever the
+// program asked for, from a debug context where the backend makes one (EGL; OSMesa makes none).
+TEST(Context, DebugFromTheEnvironment) {
+  GLint flags = 0;
+  {
+    auto context = test::make_test_context();
+    glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+    EXPECT_FALSE(flags & GL_CONTEXT_FLAG_DEBUG_BIT);
+    EXPECT_FALSE(glIsEnabled(GL_DEBUG_OUTPUT));
+  }
+  setenv("THALASSA_GL_DEBUG", "1", 1);
+  auto context = test::make_test_context();
+  unsetenv("THALASSA_GL_DEBUG");
+  EXPECT_TRUE(glIsEnabled(GL_DEBUG_OUTPUT));
+  glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
+  if (test::backend_under_test() == Backend::Egl) EXPECT_TRUE(flags & GL_CONTEXT_FLAG_DEBUG_BIT);
 }
 
 TEST(Context, NamesAndErrors) {

@@ -3,6 +3,9 @@
 #include "context/backends.hpp"
 #include "context/gl_loader.hpp"
 
+#include <cstdlib>
+#include <string>
+
 namespace thalassa {
 namespace {
 
@@ -59,7 +62,12 @@ std::vector<Backend> available_backends() {
   return backends;
 }
 
-std::unique_ptr<GlContext> create_context(Backend backend, const ContextOptions& options) {
+std::unique_ptr<GlContext> create_context(Backend backend, const ContextOptions& requested) {
+  // THALASSA_GL_DEBUG=1: a debug context whatever the caller asked, its driver's messages on
+  // stderr, for diagnosing a driver without rebuilding (the H200's lost scatter, stop 26).
+  ContextOptions options = requested;
+  if (const char* env = std::getenv("THALASSA_GL_DEBUG"); env && std::string(env) == "1")
+    options.debug = true;
   switch (backend) {
     case Backend::Egl:
 #ifdef THALASSA_HAVE_EGL

@@ -44,7 +44,8 @@ struct ContextOptions {
   int height = 480;  // pixels   into thalassa's own framebuffers)
   std::string title = "thalassa";
   bool visible = true;  // GLFW only
-  bool debug = false;   // request a debug context and log KHR_debug messages to stderr
+  bool debug = false;   // request a debug context and log KHR_debug messages to stderr (also
+                        // with the environment's THALASSA_GL_DEBUG=1)
 };
 
 // An OpenGL 4.5 core context, current on the thread that created it, with GL functions loaded.
