@@ -191,6 +191,10 @@ class CaseRunner {
       bool lattice_measured = false;
       std::optional<SunLattice> lattice;
       std::vector<double> lattice_rows;  // its per-row changes (RenderStats), for every sun term
+      // The lattice itself, kept: the term `all`'s frame 0 draws the sun term's lattice of the
+      // same view and time, without scattering it again (about a quarter of a reference's time).
+      const std::shared_ptr<ocean::ScatteredSunCache> sun_cache =
+          job.is_reference ? ocean::make_scattered_sun_cache() : nullptr;
       for (const std::string& term : suite_.terms) {
         LightTerms terms;
         if (const std::string problem = parse_terms(validation::terms_option(term), terms);
@@ -198,7 +202,7 @@ class CaseRunner {
           throw SceneError(suite_.source + ": " + problem);
         const bool measure_lattice = job.is_reference && terms.sun && !lattice_measured;
         Rendered rendered =
-            render_term(c, *method, scene, term, terms, measure_lattice, lattice);
+            render_term(c, *method, scene, term, terms, measure_lattice, lattice, sun_cache);
         if (job.is_reference)
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] = validation::reference_for_comparison(
@@ -283,11 +287,14 @@ class CaseRunner {
   // One method and term (`terms`, parsed from `term`) on the case: frame 0 at the scene's time,
   // then the flicker frames; the reference's sun measures its lattice's convergence on frame 0
   // with measure_lattice (doubling its cells as the suite allows), and the other frames draw the
-  // lattice frame 0 ended with; with `lattice`, every frame draws that one.
+  // lattice frame 0 ended with; with `lattice`, every frame draws that one. A reference's frames
+  // keep their lattices in `sun_cache` and draw a kept one of the same view and time from it.
   Rendered render_term(const SuiteCase& c, const SuiteMethod& method, const Scene& scene,
                        const std::string& term, const LightTerms& terms, bool measure_lattice,
-                       const std::optional<SunLattice>& lattice) {
+                       const std::optional<SunLattice>& lattice,
+                       const std::shared_ptr<ocean::ScatteredSunCache>& sun_cache) {
     RendererOptions options;
+    options.reference.sun_cache = sun_cache;
     options.method = *ocean::parse_method(method.method);
     options.terms = terms;
     const validation::ReferenceSettings& reference = suite_.reference;
@@ -339,9 +346,10 @@ class CaseRunner {
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       char detail[160];
-      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples)",
+      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s)",
                     method.name.c_str(), term.c_str(), k, renderer.stats().frame_ms,
-                    renderer.stats().samples);
+                    renderer.stats().samples,
+                    renderer.stats().sun_lattice_reused ? ", its sun's lattice kept" : "");
       bar_.done(c.name, detail, seconds);
     }
     return rendered;

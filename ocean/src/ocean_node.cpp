@@ -5,7 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -17,6 +19,38 @@
 #include "thalassa/ocean/wave_set.hpp"
 
 namespace thalassa::ocean {
+
+// ocean/scattered_sun_cache.hpp: one lattice's sums and everything the scatter read to make them.
+class ScatteredSunCache {
+ public:
+  struct Key {
+    // The frame, its pixel offset included: the cells were hidden by the grid's depth as drawn
+    // at the first sample's offset.
+    gl::FrameInputs view;
+    glm::dvec2 downwind{0.0};  // unit, east-north-up
+    double fresnel_r = 0.0, n_min = 0.0, n_max = 0.0;
+    double planet_radius = 0.0;  // m
+    std::uint64_t waves = 0;     // wave_digest
+    double cells_per_wavelength = 0.0;
+    int cells = 0;               // per pixel side at most
+    int refine = 0;              // subcells per side asked for
+    bool float_atomics = false;  // asked for and available
+  };
+  struct Lattice {
+    Key key;
+    std::vector<float> sums;  // 4 per pixel, as reference_sun_scatter.comp leaves them
+    int margin = 0;           // pixels (RenderStats::sun_lattice_margin)
+    int refine = 0;           // subcells per side as run
+    double hidden_fraction = 0.0;
+    double ms = 0.0;  // its own scatter's time, wall clock to its end
+  };
+  std::optional<Lattice> lattice;
+};
+
+std::shared_ptr<ScatteredSunCache> make_scattered_sun_cache() {
+  return std::make_shared<ScatteredSunCache>();
+}
+
 namespace {
 
 // Cells added beyond each image edge so that waves displacing the edge vertices inward do not
@@ -42,6 +76,28 @@ constexpr int kScatterMaxRefine = 8;
 // invocation's loops, past which every loop silently stops: reference_sun_scatter.comp, "Why
 // segments"). The scatter's segments and the gathered sun's cells per stratum keep within it.
 constexpr double kShaderLoopBudget = 32768.0;
+
+// A digest of a wave set (FNV-1a over the bits of every wave's parameters and the shortest
+// wavelength), for ScatteredSunCache's key: equal sets give equal digests; a collision between
+// two seas of one validation case is the only way unequal ones would match.
+std::uint64_t wave_digest(const WaveSet& set) {
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a's 64-bit offset basis
+  const auto add = [&](double value) {
+    std::uint64_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    for (int byte = 0; byte < 8; ++byte) {
+      hash ^= (bits >> (8 * byte)) & 0xffu;
+      hash *= 1099511628211ull;  // FNV's 64-bit prime
+    }
+  };
+  add(set.lambda_min);
+  add(double(set.waves.size()));
+  for (const Wave& wave : set.waves)
+    for (const double value : {wave.wavenumber, wave.angular_frequency, wave.amplitude,
+                               wave.direction.x, wave.direction.y, wave.phase})
+      add(value);
+  return hash;
+}
 
 // The scatter's loop iterations per invocation (an upper estimate of the shader's loops: each
 // corner's wave loop and the features' loops, the segment's fixed work, and per cell its two new
@@ -296,7 +352,8 @@ class OceanNode final : public gl::Node {
             {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
             {"reference_sun.cells", double(lattice_cap_)},
             {"reference_sun.doublings", double(lattice_doublings_)},
-            {"reference_sun.float_atomics", float_atomics_ ? 1.0 : 0.0}};
+            {"reference_sun.float_atomics", float_atomics_ ? 1.0 : 0.0},
+            {"reference_sun.reused", lattice_reused_ ? 1.0 : 0.0}};
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
@@ -507,9 +564,53 @@ class OceanNode final : public gl::Node {
     key.pixel_offset = glm::dvec2(0.0);
     if (has_scatter_key_ && same_lattice(scatter_key_, key)) return;
     const auto start = std::chrono::steady_clock::now();
+    float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
+    const double radius = provider_->planet_radius();
+    // The first lattice asked for, and everything else the scatter reads.
+    const double first_cells_per_wavelength =
+        std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+    const int first_cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
+    ScatteredSunCache::Key cache_key{.view = inputs,
+                                     .downwind = downwind,
+                                     .fresnel_r = options_.settings.fresnel_r,
+                                     .n_min = options_.settings.n_min,
+                                     .n_max = options_.settings.n_max,
+                                     .planet_radius = radius,
+                                     .waves = wave_digest(waves_),
+                                     .cells_per_wavelength = first_cells_per_wavelength,
+                                     .cells = first_cap,
+                                     .refine = std::clamp(options_.reference_sun_refine, 1,
+                                                          kScatterMaxRefine),
+                                     .float_atomics = float_atomics_};
+    // Wakes and calm areas change the slopes through buffers the key does not hold.
+    ScatteredSunCache* const cache =
+        local_features_ ? nullptr : options_.reference_sun_cache.get();
+    lattice_reused_ = cache && !options_.reference_measure_lattice && cache->lattice &&
+                      cache->lattice->sums.size() == floats &&
+                      same_cache_key(cache->lattice->key, cache_key);
+    if (lattice_reused_) {
+      const ScatteredSunCache::Lattice& kept = *cache->lattice;
+      glNamedBufferSubData(reference_sun_buffer_.get(), 0,
+                           static_cast<GLsizeiptr>(floats * sizeof(float)), kept.sums.data());
+      lattice_cells_per_wavelength_ = kept.key.cells_per_wavelength;
+      lattice_cap_ = kept.key.cells;
+      lattice_doublings_ = 0;
+      lattice_row_change_ = 0.0;
+      lattice_rows_ = 0;
+      lattice_row_changes_.clear();
+      scatter_margin_ = kept.margin;
+      scatter_refine_ = kept.refine;
+      hidden_fraction_ = kept.hidden_fraction;
+      // What the image cost (the scatter that made the sums), as if this render had scattered
+      // them: a reference's time stays its image's, whichever render spent it.
+      scatter_ms_ = kept.ms;
+      context.timer.end_pass("ocean.reference_sun");
+      scatter_key_ = key;
+      has_scatter_key_ = true;
+      return;
+    }
     gl::Defines defines;
     if (local_features_) local_features_->add_defines(defines);
-    float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
     if (float_atomics_) defines["REFERENCE_FLOAT_ATOMICS"] = "1";
     gl::Defines footprint_defines = defines;
     footprint_defines["REFERENCE_FOOTPRINT_PASS"] = "1";
@@ -536,7 +637,6 @@ class OceanNode final : public gl::Node {
     uniform_f("fresnel_r", options_.settings.fresnel_r);
     uniform_f("n_min", options_.settings.n_min);
     uniform_f("n_max", options_.settings.n_max);
-    const double radius = provider_->planet_radius();
     const double height = std::max(inputs.camera_height, 0.0);
     uniform_f("horizon_distance", std::sqrt(height * (2.0 * radius + height)));
     // Every wave's displacement together is at most the sum of their amplitudes (each moves a
@@ -606,15 +706,14 @@ class OceanNode final : public gl::Node {
     // against the lattice before it, or the most cells per wavelength, or kScatterMaxCells per
     // pixel side, is reached. The cap grows with the cells (times sqrt 2) so that every lattice
     // resolves the same footprints, hence the same rows.
-    const double first_cells_per_wavelength =
-        std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
     double cells_per_wavelength = first_cells_per_wavelength;
     const double most_cells_per_wavelength =
         std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength, 64.0);
-    const int first_cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
     int cap = first_cap;
-    run_scatter(programs, reference_sun_buffer_.get(), waves_.lambda_min / cells_per_wavelength,
-                cap);
+    // The finer lattice's own time (ms, to its end on the GPU), kept with it for a render that
+    // draws it from the cache: the time its image cost.
+    double finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
+                                        waves_.lambda_min / cells_per_wavelength, cap);
     const bool measure = options_.reference_measure_lattice;
     if (measure)
       run_scatter(programs, coarse_sun_buffer_.get(),
@@ -641,12 +740,26 @@ class OceanNode final : public gl::Node {
       std::swap(reference_sun_buffer_, coarse_sun_buffer_);
       cells_per_wavelength = finer;
       cap = finer_cap;
-      run_scatter(programs, reference_sun_buffer_.get(), waves_.lambda_min / cells_per_wavelength,
-                  cap);
+      finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
+                                   waves_.lambda_min / cells_per_wavelength, cap);
       ++lattice_doublings_;
     }
     lattice_cells_per_wavelength_ = cells_per_wavelength;
     lattice_cap_ = cap;
+    if (cache) {
+      // The lattice it ended with, under the key of a render that asks for it directly.
+      cache_key.cells_per_wavelength = cells_per_wavelength;
+      cache_key.cells = cap;
+      ScatteredSunCache::Lattice kept{.key = cache_key,
+                                      .sums = std::vector<float>(floats),
+                                      .margin = scatter_margin_,
+                                      .refine = scatter_refine_,
+                                      .hidden_fraction = hidden_fraction_,
+                                      .ms = finer_ms};
+      glGetNamedBufferSubData(reference_sun_buffer_.get(), 0,
+                              static_cast<GLsizeiptr>(floats * sizeof(float)), kept.sums.data());
+      cache->lattice = std::move(kept);
+    }
     scatter_ms_ =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     context.timer.end_pass("ocean.reference_sun");
@@ -678,6 +791,16 @@ class OceanNode final : public gl::Node {
         lattice_row_change_ = std::max(lattice_row_change_, change);
         ++lattice_rows_;
       }
+  }
+
+  // run_scatter, waited for: its wall-clock time (ms).
+  double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
+                           int cap) const {
+    const auto start = std::chrono::steady_clock::now();
+    run_scatter(programs, buffer, spacing, cap);
+    glFinish();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+        .count();
   }
 
   // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first: the
@@ -751,6 +874,16 @@ class OceanNode final : public gl::Node {
       rows.resolved[y] = omega > 0.0 ? 1.0 - unresolved / omega : 0.0;
     }
     return rows;
+  }
+
+  // Whether a kept lattice (ScatteredSunCache) is the one a render asks for: the same lattice of
+  // the same frame, drawn at the same first sample.
+  static bool same_cache_key(const ScatteredSunCache::Key& a, const ScatteredSunCache::Key& b) {
+    return same_lattice(a.view, b.view) && a.view.pixel_offset == b.view.pixel_offset &&
+           a.downwind == b.downwind && a.fresnel_r == b.fresnel_r && a.n_min == b.n_min &&
+           a.n_max == b.n_max && a.planet_radius == b.planet_radius && a.waves == b.waves &&
+           a.cells_per_wavelength == b.cells_per_wavelength && a.cells == b.cells &&
+           a.refine == b.refine && a.float_atomics == b.float_atomics;
   }
 
   // Whether two frames share the reference's sun lattice: everything but the pixel offset.
@@ -841,6 +974,7 @@ class OceanNode final : public gl::Node {
   int lattice_cap_ = 0;
   int lattice_doublings_ = 0;
   bool float_atomics_ = false;  // the scatter adds with GL_NV_shader_atomic_float
+  bool lattice_reused_ = false;  // drawn from options_.reference_sun_cache, not scattered
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests
 };

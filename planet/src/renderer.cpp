@@ -227,6 +227,7 @@ struct Renderer::Impl {
            .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
            .reference_lattice_tolerance = options.reference.row_tolerance,
            .reference_float_atomics = options.reference.sun_float_atomics,
+           .reference_sun_cache = options.reference.sun_cache,
            .features = features}));
   }
 
@@ -548,6 +549,7 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_cells = static_cast<int>(m.node_measurement("reference_sun.cells"));
   stats.sun_lattice_doublings = static_cast<int>(m.node_measurement("reference_sun.doublings"));
   stats.sun_lattice_float_atomics = m.node_measurement("reference_sun.float_atomics") > 0.0;
+  stats.sun_lattice_reused = m.node_measurement("reference_sun.reused") > 0.0;
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

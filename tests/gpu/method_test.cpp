@@ -543,6 +543,87 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   EXPECT_LT(worst, 1e-4);
 }
 
+// A reference rendered term by term keeps its sun's lattice (ReferenceSampling::sun_cache): a
+// render of every term that asks for the lattice the sun term converged to, of the same view
+// and time, draws the kept sums instead of scattering again (validate's term `all`, frame 0), and
+// gives the image it gives when it scatters them itself, to the float sums' order (measured 0
+// on llvmpipe). A render that differs in what the scatter reads (the time, the sea, the lattice)
+// or that measures its lattice scatters its own.
+TEST(OceanMethods, KeptSunLatticeIsTheLatticeScatteredAgain) {
+  auto context = test::make_test_context();
+  const Scene scene = small_sun_scene();
+  const auto cache = ocean::make_scattered_sun_cache();
+  const auto render = [&](const Scene& s, const LightTerms& terms, double cells_per_wavelength,
+                          int cells, double most, bool measure,
+                          const std::shared_ptr<ocean::ScatteredSunCache>& kept) {
+    RendererOptions options = reference_sun_options(cells_per_wavelength, 2, cells);
+    options.terms = terms;
+    options.reference.sun_max_cells_per_wavelength = most;
+    options.reference.measure_lattice = measure;
+    options.reference.row_tolerance = 0.2;  // one doubling on this sea (previous test)
+    options.reference.sun_cache = kept;
+    Renderer renderer(*context, s, options);
+    renderer.render();
+    return std::pair{renderer.stats(), renderer.image()};
+  };
+  const LightTerms sun{true, false, false, false}, all{true, true, true, true};
+  // The sun term: its lattice converges (doubling from 2 per wavelength) and is kept.
+  const auto [converged, sun_image] = render(scene, sun, 2.0, 32, 8.0, true, cache);
+  EXPECT_FALSE(converged.sun_lattice_reused);
+  ASSERT_GE(converged.sun_lattice_doublings, 1);
+  const double cells_per_wavelength = converged.sun_lattice_cells_per_wavelength;
+  const int cells = converged.sun_lattice_cells;
+  // Every term, at that lattice: drawn from the cache, and again with no cache.
+  const auto [kept, kept_image] = render(scene, all, cells_per_wavelength, cells, 0.0, false, cache);
+  const auto [again, again_image] =
+      render(scene, all, cells_per_wavelength, cells, 0.0, false, nullptr);
+  std::printf("lattice of %.3g per wavelength, %d a side: scattered in %.0f ms, kept %s\n",
+              cells_per_wavelength, cells, again.sun_lattice_ms,
+              kept.sun_lattice_reused ? "and drawn" : "but scattered again");
+  EXPECT_TRUE(kept.sun_lattice_reused);
+  EXPECT_FALSE(again.sun_lattice_reused);
+  EXPECT_EQ(kept.sun_lattice_cells_per_wavelength, cells_per_wavelength);
+  EXPECT_EQ(kept.sun_lattice_cells, cells);
+  EXPECT_EQ(kept.sun_lattice_doublings, 0);
+  EXPECT_EQ(kept.sun_lattice_rows, 0);
+  EXPECT_GT(kept.sun_lattice_ms, 0.0);  // the scatter's time, which the image cost
+  EXPECT_EQ(kept.sun_lattice_refine, again.sun_lattice_refine);
+  EXPECT_EQ(kept.sun_lattice_margin, again.sun_lattice_margin);
+  EXPECT_EQ(kept.sun_lattice_hidden, again.sun_lattice_hidden);
+  EXPECT_EQ(kept.resolved_rows, again.resolved_rows);
+  ASSERT_EQ(kept_image.rgba.size(), again_image.rgba.size());
+  double worst = 0.0;
+  for (std::size_t i = 0; i < kept_image.rgba.size(); ++i)
+    worst = std::max(worst, double(std::abs(kept_image.rgba[i] - again_image.rgba[i])) /
+                                std::max(double(std::abs(again_image.rgba[i])), 1e-30));
+  std::printf("kept against scattered again: largest relative pixel difference %.2e\n", worst);
+  EXPECT_LT(worst, 1e-5);
+  // The sun term's own image holds the same lattice's sun (it was kept from it).
+  const RowChange sun_rows = worst_row_change(green_row_totals(sun_image),
+                                              green_row_totals(render(scene, sun,
+                                                                      cells_per_wavelength, cells,
+                                                                      0.0, false, cache)
+                                                                   .second));
+  EXPECT_GE(sun_rows.rows, 4);
+  EXPECT_LT(sun_rows.worst, 1e-5);
+  // What the scatter reads differs: scattered again.
+  Scene later = scene;
+  later.time += 0.04;
+  EXPECT_FALSE(render(later, all, cells_per_wavelength, cells, 0.0, false, cache)
+                   .first.sun_lattice_reused);
+  // (The cache now holds the later frame's lattice; the sun term's again.)
+  render(scene, sun, 2.0, 32, 8.0, true, cache);
+  Scene other_sea = scene;
+  other_sea.ocean.lambda_min = 2.5;
+  EXPECT_FALSE(render(other_sea, all, cells_per_wavelength, cells, 0.0, false, cache)
+                   .first.sun_lattice_reused);
+  render(scene, sun, 2.0, 32, 8.0, true, cache);
+  EXPECT_FALSE(render(scene, all, 2.0, 32, 0.0, false, cache).first.sun_lattice_reused);
+  render(scene, sun, 2.0, 32, 8.0, true, cache);
+  EXPECT_FALSE(render(scene, all, cells_per_wavelength, cells, 0.0, true, cache)
+                   .first.sun_lattice_reused);
+}
+
 // On a calm sea every cell of the reference's footprint is a flat mirror with no spread: its sun
 // is the sun's disc seen in a mirror, as the full method draws it (the same Ross BRDF at the
 // disc's minimum variance), so the image's total sun must agree; the reference's samples only

@@ -17,6 +17,7 @@
 #include "thalassa/engine/image.hpp"
 #include "thalassa/engine/scene.hpp"
 #include "thalassa/ocean/method.hpp"
+#include "thalassa/ocean/scattered_sun_cache.hpp"
 #include "thalassa/planet/geodesy.hpp"
 
 namespace thalassa {
@@ -81,6 +82,10 @@ struct RenderStats {
   int sun_lattice_cells = 0;
   int sun_lattice_doublings = 0;
   bool sun_lattice_float_atomics = false;  // its sums added by float atomics (sun_float_atomics)
+  // Its sums taken from ReferenceSampling::sun_cache, as another render scattered them: then
+  // sun_lattice_ms is that lattice's own scatter time (what the image cost, not spent by this
+  // render), and the lattice is not measured (sun_lattice_rows 0).
+  bool sun_lattice_reused = false;
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
@@ -176,6 +181,12 @@ struct ReferenceSampling {
   // same sums to float rounding in either order; under contention, one atomic against a retry
   // loop (the H200 took 6-30 s per sun term with the loop alone, stop 26).
   bool sun_float_atomics = true;
+  // Scattered: where this render's lattice is kept, and where a lattice another render scattered
+  // for the same view, time, sea and first sample is taken from instead of scattering it again,
+  // when this render asks for that lattice without measuring it (ocean/scattered_sun_cache.hpp;
+  // RenderStats::sun_lattice_reused). validate keeps one per reference, so that its term `all`
+  // draws the lattice its sun term converged to. Null: every render scatters its own.
+  std::shared_ptr<ocean::ScatteredSunCache> sun_cache;
 };
 
 struct RendererOptions {

@@ -14,6 +14,7 @@
 #include "thalassa/engine/scene.hpp"
 #include "thalassa/ocean/local_features.hpp"
 #include "thalassa/ocean/method.hpp"
+#include "thalassa/ocean/scattered_sun_cache.hpp"
 
 namespace thalassa::ocean {
 
@@ -59,6 +60,10 @@ struct OceanNodeOptions {
   // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
   // (ReferenceSampling::sun_float_atomics), else compare-and-swap.
   bool reference_float_atomics = true;
+  // With the scatter: a lattice another render of the same view scattered, drawn instead of
+  // scattering it again where everything it depends on matches, and where this render's lattice
+  // is stored (ocean/scattered_sun_cache.hpp). Null: every render scatters its own.
+  std::shared_ptr<ScatteredSunCache> reference_sun_cache;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
