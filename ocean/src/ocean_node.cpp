@@ -699,7 +699,14 @@ class OceanNode final : public gl::Node {
     }
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kScatterFootprintBinding, footprint_buffer_.get());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, wave_buffer_.get());
-    // The grid's depth, just drawn (the compute pass reads it; nothing renders meanwhile).
+    // The grid's depth, just drawn (the compute pass reads it; nothing renders meanwhile). It is
+    // read as a texture while no framebuffer has it attached: the G-buffer that drew it is
+    // unbound first (the lighting pass binds the target's next). GL allows a compute shader to
+    // read a bound framebuffer's attachment, but a driver that keeps the attachment in its
+    // compressed render-target form while it is bound may hand the shader something else; on
+    // the H200 the 120-wave reference's term `all` lost every cell of its sun, as if the grid
+    // hid them all (stop 26, not reproduced on llvmpipe; not yet rerun on a GPU with this).
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindTextureUnit(kGridDepthUnit, context.target.depth_texture());
     // The lattice doubles its cells (spacing / sqrt 2) until no row moves by the tolerance
