@@ -37,6 +37,11 @@ bool all_finite(const Image& image) {
   return true;
 }
 
+// The methods' timing (Suite::timing) first renders untimed frames for this long, at most
+// kTimingWarmupFrames of them.
+constexpr std::chrono::milliseconds kTimingWarmup{250};
+constexpr int kTimingWarmupFrames = 100;
+
 // Whether case `c` renders the suite's reference (then its metrics are computed).
 bool renders_reference(const Suite& suite, const SuiteCase& c) {
   const SuiteMethod* reference = suite.reference_method();
@@ -129,6 +134,16 @@ class CaseRunner {
       options.terms = every;
       const auto start = std::chrono::steady_clock::now();
       Renderer renderer(context_, scene, options);
+      // Warm-up frames, untimed, for at least kTimingWarmup: a GPU's clocks rise from idle over
+      // tens to hundreds of ms, longer than five frames of a few ms (on the H200 the first
+      // method timed in stop 26, basic, read 36.8 ms, and 6.4 on the next case). On llvmpipe
+      // one frame.
+      const auto warm_start = std::chrono::steady_clock::now();
+      for (int k = 0; k < kTimingWarmupFrames &&
+                      std::chrono::steady_clock::now() - warm_start < kTimingWarmup;
+           ++k)
+        renderer.render();
+      renderer.reset_timings();
       for (int k = 0; k < suite_.timing.frames; ++k) renderer.render();
       m.timing_ms = renderer.stats().frame_ms;
       const double seconds =

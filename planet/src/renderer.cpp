@@ -439,6 +439,10 @@ Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions optio
   // of the reference is enough for that).
   impl_->context.make_current();
   impl_->draw_frame();
+  reset_timings();
+}
+
+void Renderer::reset_timings() {
   impl_->frame_ms.clear();
   impl_->pass_ms.clear();
   impl_->timer_fallbacks_before = impl_->timer.fallback_frames();

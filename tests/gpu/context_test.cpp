@@ -57,7 +57,9 @@ TEST(Context, DebugFromTheEnvironment) {
   unsetenv("THALASSA_GL_DEBUG");
   EXPECT_TRUE(glIsEnabled(GL_DEBUG_OUTPUT));
   glGetIntegerv(GL_CONTEXT_FLAGS, &flags);
-  if (test::backend_under_test() == Backend::Egl) EXPECT_TRUE(flags & GL_CONTEXT_FLAG_DEBUG_BIT);
+  if (test::backend_under_test() == Backend::Egl) {
+    EXPECT_TRUE(flags & GL_CONTEXT_FLAG_DEBUG_BIT);
+  }
 }
 
 TEST(Context, NamesAndErrors) {

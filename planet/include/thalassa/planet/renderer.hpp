@@ -224,6 +224,10 @@ class Renderer {
   // framebuffer bindings, viewport, program, vertex array, depth state, clip control, uniform
   // buffer binding 0, texture unit 0), so a host's context is left as it was.
   void render();
+  // Forgets the frames' times measured so far (RenderStats::frames, frame_ms, passes,
+  // timing_fallback_frames), so that the next ones are timed alone: after warm-up frames, while
+  // a GPU's clocks rise from idle (validate's timing of the methods).
+  void reset_timings();
   // The last frame: linear radiance, rows top first.
   Image image() const;
   // The reference method (after render()): each pixel's sea alone, the weighted mean of its
