@@ -717,10 +717,11 @@ class OceanNode final : public gl::Node {
     const double most_cells_per_wavelength =
         std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength, 64.0);
     int cap = first_cap;
-    // The finer lattice's own time (ms, to its end on the GPU), kept with it for a render that
-    // draws it from the cache: the time its image cost.
-    double finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
-                                        waves_.lambda_min / cells_per_wavelength, cap);
+    // The finer lattice's own time (ms, to its end on the GPU), kept with it in the cache for a
+    // render that draws it from there: the time its image cost.
+    double finer_ms =
+        run_scatter_timed(programs, reference_sun_buffer_.get(),
+                          waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
     const bool measure = options_.reference_measure_lattice;
     if (measure)
       run_scatter(programs, coarse_sun_buffer_.get(),
@@ -748,7 +749,7 @@ class OceanNode final : public gl::Node {
       cells_per_wavelength = finer;
       cap = finer_cap;
       finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
-                                   waves_.lambda_min / cells_per_wavelength, cap);
+                                   waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
       ++lattice_doublings_;
     }
     lattice_cells_per_wavelength_ = cells_per_wavelength;
@@ -800,11 +801,13 @@ class OceanNode final : public gl::Node {
       }
   }
 
-  // run_scatter, waited for: its wall-clock time (ms).
+  // run_scatter; with `timed`, waited for, and its wall-clock time (ms), else 0 (a lattice no
+  // cache keeps needs no time of its own, and the GPU may overlap it with the next).
   double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                           int cap) const {
+                           int cap, bool timed) const {
     const auto start = std::chrono::steady_clock::now();
     run_scatter(programs, buffer, spacing, cap);
+    if (!timed) return 0.0;
     glFinish();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
         .count();
