@@ -68,6 +68,10 @@ struct SunLattice {
 
 constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
 class CaseRunner {
  public:
   CaseRunner(const Suite& suite, GlContext& context, const std::string& dir, ProgressBar& bar)
@@ -91,6 +95,7 @@ class CaseRunner {
       return result;
     }
     result.camera_height = scene.camera.height;
+    const auto start = std::chrono::steady_clock::now();
     try {
       render_case(c, scene, result);
       time_methods(c, result);
@@ -101,6 +106,7 @@ class CaseRunner {
       result.exit_status = kExitRuntimeFailure;
       result.message = error.what();
     }
+    result.seconds = seconds_since(start);
     return result;
   }
 
@@ -146,8 +152,7 @@ class CaseRunner {
       renderer.reset_timings();
       for (int k = 0; k < suite_.timing.frames; ++k) renderer.render();
       m.timing_ms = renderer.stats().frame_ms;
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds = seconds_since(start);
       char detail[160];
       std::snprintf(detail, sizeof detail, "%s, timed at %dx%d: %.1f ms (median of %d frames)",
                     m.name.c_str(), scene.image.width, scene.image.height, *m.timing_ms,
@@ -211,6 +216,7 @@ class CaseRunner {
       const std::shared_ptr<ocean::ScatteredSunCache> sun_cache =
           job.is_reference ? ocean::make_scattered_sun_cache() : nullptr;
       for (const std::string& term : suite_.terms) {
+        const auto term_start = std::chrono::steady_clock::now();
         LightTerms terms;
         if (const std::string problem = parse_terms(validation::terms_option(term), terms);
             !problem.empty())
@@ -293,6 +299,7 @@ class CaseRunner {
                       : validation::temporal_error(rendered.compared, against, compared);
           }
         }
+        t.seconds = seconds_since(term_start);
         m.terms.push_back(std::move(t));
       }
       result.methods.push_back(std::move(m));
@@ -358,8 +365,7 @@ class CaseRunner {
                                       ? renderer.reference_sea_image()
                                       : rendered.frames.back());
       if (k == 0) rendered.stats = renderer.stats();
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const double seconds = seconds_since(start);
       char detail[160];
       std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s)",
                     method.name.c_str(), term.c_str(), k, renderer.stats().frame_ms,

@@ -363,6 +363,17 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(reference_terms[1]["samples"], 8);                             // sky
   EXPECT_EQ(reference_terms[2]["samples"], 2);                             // all
   EXPECT_EQ(results["cases"][0]["methods"][1]["terms"][0]["samples"], 1);  // full's
+  // What each term and the case cost, wall-clock: every term some time, together no more than
+  // the case (which also times full apart); none for the refused case.
+  double terms_seconds = 0.0;
+  for (const auto& m : results["cases"][0]["methods"])
+    for (const auto& t : m["terms"]) {
+      ASSERT_TRUE(t.contains("seconds")) << m["name"] << " " << t["term"];
+      EXPECT_GT(t["seconds"].get<double>(), 0.0);
+      terms_seconds += t["seconds"].get<double>();
+    }
+  EXPECT_LE(terms_seconds, results["cases"][0]["seconds"].get<double>());
+  EXPECT_FALSE(results["cases"][1].contains("seconds"));
   // Above the sky's own cap, --reference-samples raises it too (the sky alone: cheap).
   write("sky.json", R"({"suite": "sky", "base": {"image.width": 24, "image.height": 16},
     "methods": ["reference"], "terms": ["sky"], "flicker": {"frames": 1, "terms": ["sky"]},

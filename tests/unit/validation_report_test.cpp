@@ -153,6 +153,8 @@ Report synthetic_report() {
         t.flicker = 0.05 * seed;
         t.temporal_error = 0.1 / seed;
       }
+      // What the term cost validate; unknown (a report before stop 28) for full_cell4's.
+      if (m.name != std::string("full_cell4")) t.seconds = m.ms * 0.0031 + seed / 7.0;
       r.terms.push_back(std::move(t));
     }
     if (r.method != "reference") r.timing_ms = m.ms * 7.0 / 3.0;  // timed apart
@@ -168,6 +170,7 @@ Report synthetic_report() {
     }
     c.methods.push_back(std::move(r));
   }
+  c.seconds = 123.0 / 7.0;
   report.cases.push_back(c);
   CaseResult bad;
   bad.name = "lat_out_of_range";
@@ -305,6 +308,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     expect_same(csv_number(f[col["reference_flicker"]]),
                 terms.at({"reference", t.term})->flicker.value_or(NAN), what + " ref flicker");
     EXPECT_EQ(f[col["png"]], t.png);
+    expect_same(csv_number(f[col["seconds"]]), t.seconds.value_or(NAN), what + " seconds");
   }
   // rows.csv: every row total and ratio.
   const auto rows = parse_csv(read_text(dir_ / "rows.csv"));
@@ -359,6 +363,10 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(cases[2][0], "lat_out_of_range");
   EXPECT_EQ(cases[2][6], report.cases[1].message);  // quoted: it holds commas
   EXPECT_EQ(cases[2][7], "1");
+  // The run's seconds: the rendered case's, none for the refused one.
+  EXPECT_EQ(cases[0][8], "seconds");
+  expect_same(csv_number(cases[1][8]), *c.seconds, "case seconds");
+  EXPECT_EQ(cases[2][8], "");
 
   // results.json: the whole report, read back.
   const Report back = report_from_json(read_text(dir_ / "results.json"));
@@ -373,6 +381,8 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
             report.reference.sun_max_cells_per_wavelength);
   EXPECT_EQ(back.timing, report.timing);
   EXPECT_EQ(back.cases[0].timing, c.timing);
+  EXPECT_EQ(back.cases[0].seconds, c.seconds);
+  EXPECT_FALSE(back.cases[1].seconds.has_value());
   ASSERT_EQ(back.cases.size(), 2u);
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());
@@ -406,6 +416,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
       EXPECT_EQ(x.flicker.has_value(), w.flicker.has_value()) << what;
       expect_same(x.flicker.value_or(NAN), w.flicker.value_or(NAN), what);
       expect_same(x.temporal_error.value_or(NAN), w.temporal_error.value_or(NAN), what);
+      EXPECT_EQ(x.seconds, w.seconds) << what;
       expect_same(x.metrics.error.relative_l1.l, w.metrics.error.relative_l1.l, what);
       EXPECT_EQ(x.metrics.reference_black, w.metrics.reference_black) << what;
       expect_same(x.metrics.mean_row_deviation, w.metrics.mean_row_deviation, what);

@@ -600,6 +600,7 @@ std::string metrics_csv(const Report& report) {
                               "flicker",
                               "reference_flicker",
                               "temporal_error",
+                              "seconds",
                               "exr",
                               "png",
                               "reference"});
@@ -639,6 +640,7 @@ std::string metrics_csv(const Report& report) {
                          number(t.flicker.value_or(kNaN)),
                          number(rt && rt->flicker ? *rt->flicker : kNaN),
                          number(t.temporal_error.value_or(kNaN)),
+                         number(t.seconds.value_or(kNaN)),
                          t.exr,
                          t.png,
                          ref ? ref->name : std::string()});
@@ -685,11 +687,12 @@ std::string horizon_csv(const Report& report) {
 
 std::string cases_csv(const Report& report) {
   std::string csv = csv_line({"case", "camera_height_m", "set", "expected_exit", "expected_error",
-                              "exit_status", "message", "passed"});
+                              "exit_status", "message", "passed", "seconds"});
   for (const CaseResult& c : report.cases)
     csv += csv_line({c.name, number(c.camera_height), overrides_text(c.set),
                      std::to_string(c.expected_exit), c.expected_error,
-                     std::to_string(c.exit_status), c.message, c.passed() ? "1" : "0"});
+                     std::to_string(c.exit_status), c.message, c.passed() ? "1" : "0",
+                     number(c.seconds.value_or(kNaN))});
   return csv;
 }
 
@@ -885,13 +888,13 @@ std::string index_html(const Report& report,
        short_number(report.horizon.bin_deg) + " degrees.</p>\n";
   // Summary.
   h += "<h2>Cases</h2>\n<table><tr><th>case</th><th>camera height (m)</th><th>overrides</th>"
-       "<th>expected</th><th>status</th><th>passed</th></tr>\n";
+       "<th>expected</th><th>status</th><th>passed</th><th>run (s)</th></tr>\n";
   for (const CaseResult& c : report.cases)
     h += "<tr><td class=\"t\"><a href=\"#" + html(c.name) + "\">" + html(c.name) + "</a></td><td>" +
          short_number(c.camera_height) + "</td><td class=\"t\">" + html(overrides_text(c.set)) +
          "</td><td>" + std::to_string(c.expected_exit) + "</td><td>" +
          std::to_string(c.exit_status) + "</td><td" + (c.passed() ? ">yes" : " class=\"fail\">no") +
-         "</td></tr>\n";
+         "</td><td>" + short_number(c.seconds.value_or(kNaN)) + "</td></tr>\n";
   h += "</table>\n";
   h += convergence_html(report);
   h += summary_html(report, summary_plots);
@@ -932,7 +935,7 @@ std::string index_html(const Report& report,
          "RMS</th><th>max |row ratio - 1|</th><th>mean |row ratio - 1|</th><th>row "
          "error</th><th>horizon "
          "mean</th><th>horizon std</th>"
-         "<th>flicker</th><th>reference flicker</th><th>temporal error</th></tr>\n";
+         "<th>flicker</th><th>reference flicker</th><th>temporal error</th><th>run (s)</th></tr>\n";
     for (const MethodResult& m : c.methods)
       for (const TermResult& t : m.terms) {
         const MethodResult* against = measured_against(c, m);
@@ -953,7 +956,8 @@ std::string index_html(const Report& report,
              short_number(t.metrics.horizon.std) + "</td><td>" +
              short_number(t.flicker.value_or(kNaN)) + "</td><td>" +
              short_number(rt && rt->flicker ? *rt->flicker : kNaN) + "</td><td>" +
-             short_number(t.temporal_error.value_or(kNaN)) + "</td></tr>\n";
+             short_number(t.temporal_error.value_or(kNaN)) + "</td><td>" +
+             short_number(t.seconds.value_or(kNaN)) + "</td></tr>\n";
       }
     h += "</table>\n";
     // The case's reference, then the variants' own references.
@@ -1189,6 +1193,7 @@ std::string report_json(const Report& report) {
     jc["passed"] = c.passed();
     jc["camera_height"] = c.camera_height;
     if (!c.fingerprint.empty()) jc["fingerprint"] = c.fingerprint;
+    if (c.seconds) jc["seconds"] = *c.seconds;
     if (c.timing.enabled())
       jc["timing"] = {
           {"width", c.timing.width}, {"height", c.timing.height}, {"frames", c.timing.frames}};
@@ -1230,6 +1235,7 @@ std::string report_json(const Report& report) {
         jt["png"] = t.png;
         if (t.flicker) jt["flicker"] = *t.flicker;
         if (t.temporal_error) jt["temporal_error"] = *t.temporal_error;
+        if (t.seconds) jt["seconds"] = *t.seconds;
         jt["reference_black"] = t.metrics.reference_black;
         jt["max_row_deviation"] = t.metrics.max_row_deviation;
         jt["mean_row_deviation"] = t.metrics.mean_row_deviation;
@@ -1308,6 +1314,7 @@ Report report_from_json(const std::string& json_text) {
     c.message = jc.at("message");
     c.camera_height = get_number(jc.at("camera_height"));
     c.fingerprint = jc.value("fingerprint", std::string());
+    c.seconds = optional_from(jc, "seconds");
     std::vector<std::pair<std::size_t, std::size_t>> without_row_error;  // (method, term)
     if (jc.contains("timing")) c.timing = timing_from(jc.at("timing"));
     for (const ojson& jm : jc.at("methods")) {
@@ -1343,6 +1350,7 @@ Report report_from_json(const std::string& json_text) {
         t.png = jt.at("png");
         t.flicker = optional_from(jt, "flicker");
         t.temporal_error = optional_from(jt, "temporal_error");
+        t.seconds = optional_from(jt, "seconds");
         t.metrics.max_row_deviation = get_number(jt.at("max_row_deviation"));
         const ojson& je = jt.at("error");
         t.metrics.error.pixels = je.at("pixels");

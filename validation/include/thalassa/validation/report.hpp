@@ -40,6 +40,11 @@ struct TermResult {
   // Over the suite's flicker frames, when this term is one of FlickerSettings::terms.
   std::optional<double> flicker;         // validation::flicker of this method's frames
   std::optional<double> temporal_error;  // validation::temporal_error against the reference's
+  // What the term cost `thalassa validate`, wall-clock s: every frame it rendered (a reference's
+  // convergence tests and lattice doublings included, which frame_ms leaves out: its last frame
+  // only), reading them back, writing its images and comparing them. None in a report written
+  // before stop 28.
+  std::optional<double> seconds;
 };
 
 // One method (or variant) on one case.
@@ -98,6 +103,9 @@ struct CaseResult {
   // case_fingerprint of the inputs it was run with ("" in a report written before stop 22):
   // what `thalassa validate --resume` compares to keep it.
   std::string fingerprint;
+  // The case's run, wall-clock s: its terms (TermResult::seconds) and its methods' timing. None
+  // for a case refused before rendering, or in a report written before stop 28.
+  std::optional<double> seconds;
   // The case passed: it ended as expected (expected_exit, and expected_error in the message).
   bool passed() const;
 };
