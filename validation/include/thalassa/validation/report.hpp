@@ -40,10 +40,10 @@ struct TermResult {
   // Over the suite's flicker frames, when this term is one of FlickerSettings::terms.
   std::optional<double> flicker;         // validation::flicker of this method's frames
   std::optional<double> temporal_error;  // validation::temporal_error against the reference's
-  // What the term cost `thalassa validate`, wall-clock s: every frame it rendered (a reference's
-  // convergence tests and lattice doublings included, which frame_ms leaves out: its last frame
-  // only), reading them back, writing its images and comparing them. None in a report written
-  // before stop 28.
+  // What the term cost `thalassa validate`, wall-clock s: its renders' set-up (tables loaded, sky
+  // map drawn), every frame with the host's waits and read-backs between them (a reference's
+  // samples one at a time), writing its images and comparing them; frame_ms is the frames' GPU
+  // time alone. None in a report written before stop 28.
   std::optional<double> seconds;
 };
 
