@@ -471,9 +471,8 @@ class OceanNode final : public gl::Node {
                                                      : options_.settings.grid_cell;
   }
 
-  void draw_grid(const GridCamera& camera) {
-    const ProjectedGrid grid = make_projected_grid(camera, grid_cell(), kGridMarginCells);
-    if (grid.rows == 0) return;
+  // The grid's vertices (rest position and cell size, float) and indices into the buffers.
+  void upload_grid(const ProjectedGrid& grid) {
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 4);
     for (std::size_t k = 0; k < grid.rest.size(); ++k)
@@ -482,7 +481,7 @@ class OceanNode final : public gl::Node {
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
     const GLsizeiptr index_bytes =
         static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint32_t));
-    // Sizes follow the image, fixed for a renderer: allocate once, update each frame.
+    // Sizes follow the image, fixed for a renderer: allocate once, update each new grid.
     if (vertex_bytes != vertex_capacity_ || index_bytes != index_capacity_) {
       vertex_buffer_ = gl::make_buffer();
       index_buffer_ = gl::make_buffer();
@@ -498,11 +497,28 @@ class OceanNode final : public gl::Node {
     }
     glNamedBufferSubData(vertex_buffer_.get(), 0, vertex_bytes, vertices.data());
     glNamedBufferSubData(index_buffer_.get(), 0, index_bytes, grid.indices.data());
+  }
+
+  // The grid depends on the camera alone (not on the time, the sun or a reference sample's pixel
+  // offset, which the shaders apply), so a frame that sees the sea as the last one did draws the
+  // buffers it left: the reference's samples, repeated and timed frames. Computing it is the
+  // host's largest cost per frame (about 1 ms for the reference's 1-pixel cells at 128x72 on
+  // this project's CI machine, measured with perf in stop 29), which each of a reference's up to
+  // 4,096 samples paid.
+  void draw_grid(const GridCamera& camera) {
+    const double cell = grid_cell();
+    if (!(grid_key_ && grid_key_->camera == camera && grid_key_->cell_px == cell)) {
+      grid_key_.reset();  // until the new grid is in the buffers
+      const ProjectedGrid grid = make_projected_grid(camera, cell, kGridMarginCells);
+      grid_index_count_ = grid.indices.size();
+      if (grid.rows > 0) upload_grid(grid);
+      grid_key_ = GridKey{camera, cell};
+    }
+    if (grid_index_count_ == 0) return;
     GLint previous_vertex_array = 0;
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &previous_vertex_array);
     glBindVertexArray(vertex_array_.get());
-    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid.indices.size()), GL_UNSIGNED_INT,
-                   nullptr);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(grid_index_count_), GL_UNSIGNED_INT, nullptr);
     glBindVertexArray(static_cast<GLuint>(previous_vertex_array));
   }
 
@@ -953,6 +969,14 @@ class OceanNode final : public gl::Node {
   int gbuffer_height_ = 0;
   GLsizeiptr vertex_capacity_ = 0;
   GLsizeiptr index_capacity_ = 0;
+  // The grid in the buffers (draw_grid): the camera and cell it was made for (none before the
+  // first, or while a new one is being made), and its index count (0: no sea in view).
+  struct GridKey {
+    GridCamera camera;
+    double cell_px = 0.0;
+  };
+  std::optional<GridKey> grid_key_;
+  std::size_t grid_index_count_ = 0;
   int resolved_waves_ = 0;
   glm::dvec2 constant_variance_{0.0};  // the basic method's slope variance (along, across wind)
   // The reference's sun (scatter_reference_sun): 4 floats per pixel, at the node's lattice and

@@ -461,5 +461,36 @@ TEST(ProjectedGrid, ImageSeesSeaAndSkyExactly) {
   EXPECT_FALSE(image_sees_sea(up, glm::dvec2(-1.0), glm::dvec2(1.0)));
 }
 
+
+// The ocean node keeps its grid while the camera is the same (ocean_node.cpp, draw_grid): two
+// cameras are the same only when every field is, bit for bit, and one with a NaN is none.
+TEST(ProjectedGrid, CamerasAreTheSameOnlyWhenEveryFieldIs) {
+  const GridCamera a = make_camera(37.0, -10.0, 0.0, 128, 72, 100.0, 45.0,
+                                   spherical_sea_surface(kEarthRadius));
+  const GridCamera copy = a;
+  EXPECT_TRUE(copy == a);
+  // The same view's grid, made twice: the same vertices (the cache hands back what a new grid
+  // would be).
+  const ProjectedGrid g1 = make_projected_grid(a, 1.0, 2), g2 = make_projected_grid(copy, 1.0, 2);
+  ASSERT_GT(g1.rows, 0);
+  EXPECT_EQ(g1.rest, g2.rest);
+  EXPECT_EQ(g1.indices, g2.indices);
+  const double ulp = 1.0 + 1e-15;
+  std::vector<GridCamera> changed(11, a);
+  changed[0].right.x = std::nextafter(a.right.x, 2.0);
+  changed[1].up.y = std::nextafter(a.up.y, 2.0);
+  changed[2].forward.z = std::nextafter(a.forward.z, 2.0);
+  changed[3].tan_half_fov_y *= ulp;
+  changed[4].aspect *= ulp;
+  changed[5].height *= ulp;
+  changed[6].width += 1;
+  changed[7].height_px += 1;
+  changed[8].surface.curvature[1][1] *= ulp;
+  changed[9].surface = flat_sea_surface();
+  changed[10].height = std::nan("");
+  for (std::size_t k = 0; k < changed.size(); ++k) EXPECT_FALSE(changed[k] == a) << "field " << k;
+  EXPECT_FALSE(changed[10] == changed[10]);
+}
+
 }  // namespace
 }  // namespace thalassa::ocean

@@ -53,6 +53,8 @@ struct GridCamera {
   int height_px = 1;
   // The sea at rest, nadir ENU: C = 0 (flat, the default) or positive definite (convex).
   SeaSurface surface;
+  // Exact (a NaN field makes a camera equal to none): whether a grid made for one is the other's.
+  bool operator==(const GridCamera&) const = default;
 };
 
 struct ProjectedGrid {

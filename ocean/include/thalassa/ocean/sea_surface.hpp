@@ -26,6 +26,7 @@ namespace thalassa::ocean {
 
 struct SeaSurface {
   glm::dmat3 curvature{0.0};  // C (symmetric, 1/m); glm is column-major: curvature[col][row]
+  bool operator==(const SeaSurface&) const = default;  // exact
 };
 
 SeaSurface flat_sea_surface();
