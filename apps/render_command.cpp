@@ -102,13 +102,13 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "The reference's sun: the most cells per pixel side (gathered: at most 64 per "
                    "side of each of its s x s strata); rows that need more are reported "
                    "unresolved in --stats resolved_rows")
-      ->check(CLI::Range(1, 1024))
+      ->check(CLI::Range(1, ocean::kReferenceMaxSunCells))
       ->capture_default_str();
   render
       ->add_option("--sun-cells-per-wavelength", args.sun_cells_per_wavelength,
                    "The reference's sun: cells per shortest wavelength (finer is more accurate "
                    "and costs the square; scattered, --stats sun_lattice_row_change measures it)")
-      ->check(CLI::Range(1.0, 64.0))
+      ->check(CLI::Range(1.0, ocean::kReferenceMaxCellsPerWavelength))
       ->capture_default_str();
   render
       ->add_option("--sun-max-cells-per-wavelength", args.sun_max_cells_per_wavelength,
@@ -117,7 +117,7 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "per pixel side, times sqrt 2) up to this many per wavelength (at least "
                    "--sun-cells-per-wavelength; 0: no doubling); --stats "
                    "sun_lattice_cells_per_wavelength says where it stopped")
-      ->check(CLI::Range(0.0, 64.0))
+      ->check(CLI::Range(0.0, ocean::kReferenceMaxCellsPerWavelength))
       ->capture_default_str();
   render->add_flag("--sun-swap-atomics", args.sun_swap_atomics,
                    "The reference's sun, scattered: add its cells' shares by compare-and-swap "

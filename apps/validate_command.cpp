@@ -454,14 +454,14 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
                    "reference.pixel_samples (it doubles them from 16 while a row's total changes "
                    "by 1% or more; a machine with a GPU affords 1024 and more); the terms without "
                    "the sun keep reference.pixel_samples_without_sun where it is larger")
-      ->check(CLI::Range(1, 4096));
+      ->check(CLI::Range(1, ocean::kReferenceMaxPixelSamples));
   validate
       ->add_option("--reference-sun-max-cells-per-wavelength", args.reference_sun_max_cells,
                    "The reference's sun: while its lattice moves a row's total by 1% or more "
                    "against half its cells, double them up to this many per shortest wavelength, "
                    "instead of the suite's reference.sun_max_cells_per_wavelength (at least its "
                    "reference.sun_cells_per_wavelength; each doubling about twice the sun's time)")
-      ->check(CLI::Range(1.0, 64.0));
+      ->check(CLI::Range(1.0, ocean::kReferenceMaxCellsPerWavelength));
   validate->add_flag("--resume", args.resume,
                      "Keep the cases of the report already in the output folder that were run "
                      "with the same inputs (scene, methods, settings, program and renderer), and "

@@ -64,10 +64,10 @@ constexpr double kReferenceGridCell = 1.0;
 
 // The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds (the
 // gathered sun), and per pixel side of the scattered sun's lattice
-// (shaders/ocean/reference_sun_scatter.comp): 1024^2 cells per pixel, 16 times the paper's
-// sec. 7.2 count and far past what a validation image can afford.
+// (shaders/ocean/reference_sun_scatter.comp; ocean/method.hpp): 2048^2 cells per pixel, 64 times
+// the paper's sec. 7.2 count, reached only where a footprint far away needs it.
 constexpr int kReferenceMaxCells = 64;
-constexpr int kScatterMaxCells = 1024;
+constexpr int kScatterMaxCells = kReferenceMaxSunCells;
 // The most subcells per side of a scattered cell that comes near the mirror slope
 // (reference_sun_scatter.comp's REFERENCE_MAX_REFINE).
 constexpr int kScatterMaxRefine = 8;
@@ -443,7 +443,7 @@ class OceanNode final : public gl::Node {
     if (!reference_sun() || reference_sun_scatter() || waves_.waves.empty()) return;
     glProgramUniform1f(
         program, glGetUniformLocation(program, "reference_spacing"),
-        float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0)));
+        float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, kReferenceMaxCellsPerWavelength)));
     // At most (cells + 1)^2 corners per fragment, each running the wave loop (and the wakes'),
     // besides the fragment's own normal: within the loop budget (31 x 31 cells at most for 30
     // waves, 22 x 22 for 60, 15 x 15 for 120; strata that need more are reported unresolved).
@@ -584,7 +584,7 @@ class OceanNode final : public gl::Node {
     const double radius = provider_->planet_radius();
     // The first lattice asked for, and everything else the scatter reads.
     const double first_cells_per_wavelength =
-        std::clamp(options_.reference_cells_per_wavelength, 1.0, 64.0);
+        std::clamp(options_.reference_cells_per_wavelength, 1.0, kReferenceMaxCellsPerWavelength);
     const int first_cap = std::clamp(options_.reference_sun_cells, 1, kScatterMaxCells);
     ScatteredSunCache::Key cache_key{.view = inputs,
                                      .downwind = downwind,
@@ -731,7 +731,8 @@ class OceanNode final : public gl::Node {
     // resolves the same footprints, hence the same rows.
     double cells_per_wavelength = first_cells_per_wavelength;
     const double most_cells_per_wavelength =
-        std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength, 64.0);
+        std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength,
+                   kReferenceMaxCellsPerWavelength);
     int cap = first_cap;
     // The finer lattice's own time (ms, to its end on the GPU), kept with it in the cache for a
     // render that draws it from there: the time its image cost.
@@ -858,7 +859,7 @@ class OceanNode final : public gl::Node {
     glUseProgram(programs[0]);
     dispatch(programs[0], footprint_count_);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    // Cells' pass: cap x segments invocations per footprint (at most 1024 x 1024), whole
+    // Cells' pass: cap x segments invocations per footprint (at most 2048 x 2048), whole
     // footprints per batch, so that the shader's 32-bit invocation index counts one batch (the
     // whole lattice's slots pass 2^32 on the 20 m/s sea at 4 m with 8 x 8 subcells: 6.1e9).
     const std::uint64_t per_footprint = std::uint64_t(cap) * segments;

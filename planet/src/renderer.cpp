@@ -198,15 +198,19 @@ struct Renderer::Impl {
     if (options.method == ocean::OceanMethod::reference) {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
-            r.sun_cells >= 1 && r.sun_cells <= 1024 && r.sun_cells_per_wavelength >= 1.0 &&
-            r.sun_cells_per_wavelength <= 64.0 &&
+            r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
+            r.sun_cells_per_wavelength >= 1.0 &&
+            r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
              (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
-              r.sun_max_cells_per_wavelength <= 64.0))))
+              r.sun_max_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength))))
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
-            "sun_cells in [1, 1024], sun_cells_per_wavelength in [1, 64] and "
-            "sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, 64]");
+            "sun_cells in [1, " + std::to_string(ocean::kReferenceMaxSunCells) +
+            "], sun_cells_per_wavelength in [1, " +
+            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
+            "] and sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
+            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) + "]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "strict_json.hpp"
+#include "thalassa/ocean/method.hpp"
 
 namespace thalassa::validation {
 namespace {
@@ -377,20 +378,23 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
       suite.reference.pixel_samples =
-          integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1, 4096);
+          integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1,
+                     ocean::kReferenceMaxPixelSamples);
     if (r.contains("pixel_samples_without_sun"))
       suite.reference.pixel_samples_without_sun = integer_at(
-          r["pixel_samples_without_sun"], source, "reference.pixel_samples_without_sun", 1, 4096);
+          r["pixel_samples_without_sun"], source, "reference.pixel_samples_without_sun", 1,
+          ocean::kReferenceMaxPixelSamples);
     if (r.contains("sun_normal_samples"))
       suite.reference.sun_normal_samples =
           integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);
     if (r.contains("sun_cells_per_wavelength"))
       suite.reference.sun_cells_per_wavelength =
           number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength", 1,
-                    64, "cells", false);
+                    ocean::kReferenceMaxCellsPerWavelength, "cells", false);
     if (r.contains("sun_max_cells_per_wavelength")) {
       const double most = number_at(r["sun_max_cells_per_wavelength"], source,
-                                    "reference.sun_max_cells_per_wavelength", 1, 64, "cells", false);
+                                    "reference.sun_max_cells_per_wavelength", 1,
+                                    ocean::kReferenceMaxCellsPerWavelength, "cells", false);
       if (most < suite.reference.sun_cells_per_wavelength) {
         char expected[96];
         std::snprintf(expected, sizeof expected,

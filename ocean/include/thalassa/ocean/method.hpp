@@ -25,6 +25,21 @@ enum class OceanMethod {
   reference,
 };
 
+// The reference's sun's limits (planet/renderer.hpp, ReferenceSampling; its lattice,
+// shaders/ocean/reference_sun_scatter.comp), checked by everything that takes them (the renderer,
+// the suite file, the command line). Cells per shortest wavelength: the 30-wave variant's
+// references, a few isolated glints a row in the foreground, still moved rows by 1.4 % between
+// 45.25 and 64 (stop 29, docs/validation.md), so the lattice may double twice more. Cells per
+// pixel side, scattered: the lattice's cap grows with its cells (sun_cells times sqrt 2 each
+// doubling), 256 at 16 per wavelength reaching 2,048 at 128; each footprint's
+// cap x ceil(cap / segment) invocations stay far below the shader's 32-bit index per batch
+// (4.2e6 at 2,048 with one cell per invocation).
+inline constexpr double kReferenceMaxCellsPerWavelength = 128.0;
+inline constexpr int kReferenceMaxSunCells = 2048;
+// The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
+// at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
+inline constexpr int kReferenceMaxPixelSamples = 16384;
+
 std::string_view method_name(OceanMethod method);
 // "full", "basic", "normals", "reference" -> the method; nullopt otherwise.
 std::optional<OceanMethod> parse_method(std::string_view name);

@@ -114,7 +114,7 @@ struct LightTerms {
 // whose glint is the sun's parallelogram (shaders/ocean/reference_cell.glsl).
 enum class ReferenceSun {
   // Once per image: each pixel's footprint on the sea at rest is cut into a lattice of cells (at
-  // most sun_cells per pixel side, [1, 1024]) and each cell's sun is added to the pixel that sees
+  // most sun_cells per pixel side, [1, 2048]) and each cell's sun is added to the pixel that sees
   // its glint (shaders/ocean/reference_sun_scatter.comp). The same for every sample: the sun
   // adds no noise between sample counts, and its convergence is measured instead against a
   // lattice of half the cells (RenderStats::sun_lattice_row_change). It does not depend on the
@@ -171,10 +171,10 @@ struct ReferenceSampling {
   // Scattered and measured: while its lattice moves a compared row by row_tolerance or more
   // against the lattice of half its cells, the sun doubles its cells (sun_cells_per_wavelength
   // and sun_cells times sqrt 2: the same footprints resolved, so the same rows compared) and
-  // measures again, up to this many cells per wavelength and 1024 per pixel side: the samples'
+  // measures again, up to this many cells per wavelength and 2048 per pixel side: the samples'
   // doubling, for the sun's normal samples (issue 6, point 1). Each doubling costs about twice
   // the lattice before it. 0 (the default): none, the lattice as sun_cells_per_wavelength says;
-  // else in [sun_cells_per_wavelength, 64].
+  // else in [sun_cells_per_wavelength, 128] (ocean/method.hpp's limits).
   double sun_max_cells_per_wavelength = 0.0;
   // Scattered: add the cells' shares with the float atomics of GL_NV_shader_atomic_float where
   // the driver has them (NVIDIA's, Mesa's llvmpipe), else by compare-and-swap on their bits. The

@@ -103,7 +103,7 @@ struct TimingSettings {
 // on. check_convergence: also render the reference with twice the samples and report the
 // largest change of a row's total (it must stay below 1%).
 struct ReferenceSettings {
-  int pixel_samples = 16;  // samples per pixel, [1, 4096]
+  int pixel_samples = 16;  // samples per pixel, [1, 16384]
   // The same for the terms without the sun (sky, sea, air), which cost a small fraction of the
   // sun's reference per sample and converge more slowly per sample than it costs to take more;
   // 0: pixel_samples.
@@ -111,7 +111,7 @@ struct ReferenceSettings {
   // Normal samples per pixel for the sun's disc, [1, 65536]: the reference's sun integrates over
   // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
   // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun_scatter.comp), each at most the
-  // shortest wavelength / sun_cells_per_wavelength ([1, 64]) wide.
+  // shortest wavelength / sun_cells_per_wavelength ([1, 128]) wide.
   int sun_normal_samples = 65536;
   double sun_cells_per_wavelength = 16.0;
   // How the reference integrates the sun over its cells: "scattered" (once per image from a
@@ -123,7 +123,7 @@ struct ReferenceSettings {
   // (1: none; ReferenceSampling::sun_refine).
   int sun_refine = 4;
   // Scattered: while the lattice moves a compared row by 1 % or more against half its cells, it
-  // doubles its cells up to this many per wavelength, [sun_cells_per_wavelength, 64]; 0: never
+  // doubles its cells up to this many per wavelength, [sun_cells_per_wavelength, 128]; 0: never
   // (ReferenceSampling::sun_max_cells_per_wavelength).
   double sun_max_cells_per_wavelength = 0.0;
   bool check_convergence = false;

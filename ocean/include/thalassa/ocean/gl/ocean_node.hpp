@@ -38,9 +38,9 @@ struct OceanNodeOptions {
   // The reference's sun (planet/renderer.hpp, ReferenceSun): with reference_sun_scatter (the
   // default), scattered once per image from a lattice of the sea
   // (shaders/ocean/reference_sun_scatter.comp), at most reference_sun_cells per pixel side,
-  // [1, 1024]; without it, gathered per sample (shaders/ocean/reference_sun.glsl), at most
+  // [1, 2048]; without it, gathered per sample (shaders/ocean/reference_sun.glsl), at most
   // reference_sun_cells per side of a sample's pixel stratum, [1, 64]. Either way each cell is
-  // at most the shortest wavelength / reference_cells_per_wavelength wide ([1, 64]); a stratum
+  // at most the shortest wavelength / reference_cells_per_wavelength wide ([1, 128]); a stratum
   // or pixel whose footprint needs more is drawn with the most and marked unresolved.
   int reference_sun_cells = 256;
   double reference_cells_per_wavelength = 16.0;
@@ -54,7 +54,8 @@ struct OceanNodeOptions {
   // With it: while a compared row moves by reference_lattice_tolerance (relative) or more, the
   // lattice doubles its cells (cells per wavelength and reference_sun_cells times sqrt 2) up to
   // reference_max_cells_per_wavelength (below reference_cells_per_wavelength: no doubling) and
-  // 1024 cells per pixel side (ReferenceSampling::sun_max_cells_per_wavelength).
+  // 2048 cells per pixel side (ReferenceSampling::sun_max_cells_per_wavelength; the limits in
+  // ocean/method.hpp).
   double reference_max_cells_per_wavelength = 0.0;
   double reference_lattice_tolerance = 0.01;
   // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
