@@ -253,6 +253,12 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   const std::string error_dat = read_text(dir_ / "plots" / (c + "_error_time.dat"));
   EXPECT_NE(error_dat.find("full_cell4 "), std::string::npos);
   EXPECT_EQ(error_dat.find("\nreference "), std::string::npos);
+  // Its terms' labels a quarter of the height apart: two terms often take the same time.
+  const std::string error_gp = read_text(dir_ / "plots" / (c + "_error_time.gp"));
+  EXPECT_NE(error_gp.find("'reference (sun)' at 5123.25, graph 0.980000 right"), std::string::npos)
+      << error_gp;
+  EXPECT_NE(error_gp.find("'reference (all)' at 7684.875, graph 0.740000 right"), std::string::npos)
+      << error_gp;
 }
 
 // A suite without a reference (the stress suite) measures nothing: the report has its tables
