@@ -441,9 +441,9 @@ class OceanNode final : public gl::Node {
   // The gathered sun's uniforms (shaders/ocean/reference_sun.glsl).
   void set_reference_sun_uniforms(GLuint program) const {
     if (!reference_sun() || reference_sun_scatter() || waves_.waves.empty()) return;
-    glProgramUniform1f(
-        program, glGetUniformLocation(program, "reference_spacing"),
-        float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength, 1.0, kReferenceMaxCellsPerWavelength)));
+    glProgramUniform1f(program, glGetUniformLocation(program, "reference_spacing"),
+                       float(waves_.lambda_min / std::clamp(options_.reference_cells_per_wavelength,
+                                                            1.0, kReferenceMaxCellsPerWavelength)));
     // At most (cells + 1)^2 corners per fragment, each running the wave loop (and the wakes'),
     // besides the fragment's own normal: within the loop budget (31 x 31 cells at most for 30
     // waves, 22 x 22 for 60, 15 x 15 for 120; strata that need more are reported unresolved).

@@ -206,8 +206,8 @@ struct Renderer::Impl {
               r.sun_max_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength))))
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
-            "sun_cells in [1, " + std::to_string(ocean::kReferenceMaxSunCells) +
-            "], sun_cells_per_wavelength in [1, " +
+            "sun_cells in [1, " +
+            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "] and sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) + "]");

@@ -265,6 +265,15 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
             std::string::npos)
       << down.err;
   EXPECT_FALSE(fs::exists(dir_ / "down.exr"));
+  // The limits of ocean/method.hpp: past them, refused before anything renders.
+  for (const std::string& past :
+       {"--sun-cells-per-wavelength 129", "--sun-max-cells-per-wavelength 129",
+        "--sun-cells 2049"}) {
+    const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
+    EXPECT_EQ(refused.status, 2) << past;
+    EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "past.exr")) << past;
+  }
 }
 
 TEST_F(Cli, SceneFileAndSetOverride) {
@@ -460,10 +469,15 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   write("bad.json", R"({"suite": "bad", "cases": [{"name": "x", "set": {"camera.hieght": 4}}]})");
   expect_invalid(run("validate bad.json -o out"), {"bad.json", "camera.hieght"});
   // An option out of its range: CLI11's message (and its "Run with --help" line), status 2.
-  const Result range = run("validate -o out --reference-samples 0");
-  EXPECT_EQ(range.status, 2) << range.err;
-  EXPECT_NE(range.err.find("--reference-samples"), std::string::npos) << range.err;
-  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  // Past ocean/method.hpp's limits too.
+  for (const std::string& past :
+       {"--reference-samples 0", "--reference-samples 16385",
+        "--reference-sun-max-cells-per-wavelength 129"}) {
+    const Result range = run("validate -o out " + past);
+    EXPECT_EQ(range.status, 2) << range.err;
+    EXPECT_NE(range.err.find(past.substr(0, past.find(' '))), std::string::npos) << range.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+  }
   // The sun's lattice may only double up from where the suite starts it (16 per wavelength).
   expect_invalid(run("validate -o out --reference-sun-max-cells-per-wavelength 8"),
                  {"--reference-sun-max-cells-per-wavelength: expected at least the suite's "

@@ -381,9 +381,9 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
           integer_at(r["pixel_samples"], source, "reference.pixel_samples", 1,
                      ocean::kReferenceMaxPixelSamples);
     if (r.contains("pixel_samples_without_sun"))
-      suite.reference.pixel_samples_without_sun = integer_at(
-          r["pixel_samples_without_sun"], source, "reference.pixel_samples_without_sun", 1,
-          ocean::kReferenceMaxPixelSamples);
+      suite.reference.pixel_samples_without_sun =
+          integer_at(r["pixel_samples_without_sun"], source, "reference.pixel_samples_without_sun",
+                     1, ocean::kReferenceMaxPixelSamples);
     if (r.contains("sun_normal_samples"))
       suite.reference.sun_normal_samples =
           integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);
