@@ -325,6 +325,12 @@ int run_fly(const FlyArgs& args) {
     renderer->render();
     const Image image = renderer->image();
     record.stats = renderer->stats();
+    if (const std::string problem = nonfinite_pixels(image); !problem.empty()) {
+      progress.finish();
+      print_error("frame " + std::to_string(frame) + ": " + problem + "; not written (the " +
+                  "frames before it are)");
+      return kExitRuntimeFailure;
+    }
     PendingOutputs outputs;
     write_exr(outputs.add(exr), image, scene.image.exr_type,
               frame_metadata(scene, merged, record.stats, flight, frame));

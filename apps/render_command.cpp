@@ -206,6 +206,17 @@ int run_render(const RenderArgs& args) {
   }
   const Image image = renderer.image();
   const RenderStats stats = renderer.stats();
+  // An image that is not finite is an error, not a file; the statistics, when asked for, are
+  // still written, since they say what the render did.
+  if (const std::string problem = nonfinite_pixels(image); !problem.empty()) {
+    if (!args.stats.empty()) {
+      PendingOutputs stats_only;
+      write_text_atomically(stats_only.add(args.stats), stats_json(stats));
+      stats_only.commit();
+    }
+    print_error("the rendered image: " + problem + "; no image written");
+    return kExitRuntimeFailure;
+  }
 
   // 3. Outputs, each written whole or not at all.
   const Metadata metadata = render_metadata(scene, loaded.merged_json, stats,

@@ -31,12 +31,6 @@ using validation::SuiteCase;
 using validation::SuiteMethod;
 using validation::TermResult;
 
-bool all_finite(const Image& image) {
-  for (float v : image.rgba)
-    if (!std::isfinite(v)) return false;
-  return true;
-}
-
 // The methods' timing (Suite::timing) first renders untimed frames for this long, at most
 // kTimingWarmupFrames of them.
 constexpr std::chrono::milliseconds kTimingWarmup{250};
@@ -228,10 +222,13 @@ class CaseRunner {
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] = validation::reference_for_comparison(
                 rendered.frames[k], rendered.compared[k], view.sea_mask());
-        if (!std::all_of(rendered.frames.begin(), rendered.frames.end(), all_finite)) {
-          result.exit_status = kExitRuntimeFailure;
-          result.message = method->name + ", " + term + ": a pixel is not finite";
-        }
+        for (std::size_t k = 0; k < rendered.frames.size(); ++k)
+          if (const std::string problem = nonfinite_pixels(rendered.frames[k]);
+              !problem.empty() && result.exit_status != kExitRuntimeFailure) {
+            result.exit_status = kExitRuntimeFailure;
+            result.message =
+                method->name + ", " + term + ", frame " + std::to_string(k) + ": " + problem;
+          }
         TermResult t;
         t.term = term;
         t.frame_ms = rendered.stats.frame_ms;

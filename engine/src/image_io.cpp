@@ -88,6 +88,22 @@ double png_black_level(double exposure) {
   return -std::log1p(-kSmallestVisibleEncoded / kSrgbLinearSlope) / exposure;
 }
 
+std::string nonfinite_pixels(const Image& image) {
+  std::size_t count = 0;
+  std::size_t first = 0;
+  for (std::size_t p = 0; 4 * p + 3 < image.rgba.size(); ++p) {
+    const float* v = &image.rgba[4 * p];
+    if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]))
+      continue;
+    if (count++ == 0) first = p;
+  }
+  if (count == 0) return "";
+  const std::size_t width = static_cast<std::size_t>(std::max(image.width, 1));
+  return std::to_string(count) + (count == 1 ? " pixel is" : " pixels are") +
+         " not finite, the first at x " + std::to_string(first % width) + ", y " +
+         std::to_string(first / width) + " (from the top left)";
+}
+
 double tone_map(double radiance, double exposure) {
   if (!std::isfinite(radiance) || radiance <= 0.0 || !(exposure > 0.0)) return 0.0;
   return srgb_encode(-std::expm1(-exposure * radiance));

@@ -266,9 +266,9 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
       << down.err;
   EXPECT_FALSE(fs::exists(dir_ / "down.exr"));
   // The limits of ocean/method.hpp: past them, refused before anything renders.
-  for (const std::string& past :
-       {"--sun-cells-per-wavelength 129", "--sun-max-cells-per-wavelength 129",
-        "--sun-cells 2049"}) {
+  for (const std::string& past : std::vector<std::string>{"--sun-cells-per-wavelength 129",
+                                                          "--sun-max-cells-per-wavelength 129",
+                                                          "--sun-cells 2049"}) {
     const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
     EXPECT_EQ(refused.status, 2) << past;
     EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;
@@ -471,8 +471,8 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   // An option out of its range: CLI11's message (and its "Run with --help" line), status 2.
   // Past ocean/method.hpp's limits too.
   for (const std::string& past :
-       {"--reference-samples 0", "--reference-samples 16385",
-        "--reference-sun-max-cells-per-wavelength 129"}) {
+       std::vector<std::string>{"--reference-samples 0", "--reference-samples 16385",
+                                "--reference-sun-max-cells-per-wavelength 129"}) {
     const Result range = run("validate -o out " + past);
     EXPECT_EQ(range.status, 2) << range.err;
     EXPECT_NE(range.err.find(past.substr(0, past.find(' '))), std::string::npos) << range.err;

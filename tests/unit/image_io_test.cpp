@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "thalassa/engine/file_io.hpp"
 #include "thalassa/engine/image.hpp"
@@ -41,6 +42,25 @@ Image gradient() {
       p[3] = 1.0f;
     }
   return image;
+}
+
+TEST(NonFinitePixels, CountsThemAndNamesTheFirstInReadingOrder) {
+  Image image = gradient();
+  EXPECT_EQ(nonfinite_pixels(image), "");
+  // Any channel, alpha included; NaN and both infinities; the first from the top left.
+  image.pixel(4, 2)[1] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_EQ(nonfinite_pixels(image),
+            "1 pixel is not finite, the first at x 4, y 2 (from the top left)");
+  image.pixel(1, 1)[3] = std::numeric_limits<float>::infinity();
+  image.pixel(3, 1)[0] = -std::numeric_limits<float>::infinity();
+  image.pixel(3, 1)[2] = std::numeric_limits<float>::quiet_NaN();  // one pixel, two channels
+  EXPECT_EQ(nonfinite_pixels(image),
+            "3 pixels are not finite, the first at x 1, y 1 (from the top left)");
+  // The largest finite float is finite.
+  Image big = gradient();
+  big.pixel(0, 0)[0] = std::numeric_limits<float>::max();
+  EXPECT_EQ(nonfinite_pixels(big), "");
+  EXPECT_EQ(nonfinite_pixels(Image{}), "");
 }
 
 TEST_F(ImageIo, FloatExrRoundTripIsExactAndKeepsRowsAndMetadata) {

@@ -47,6 +47,12 @@ unsigned char quantize_8bit(double encoded, int x, int y);
 // when none of its pixels reaches it (docs/validation.md). 0 for an exposure that is not > 0.
 double png_black_level(double exposure);
 
+// "" when every channel of every pixel is finite; otherwise what is not, for an error message
+// (DESIGN section 4: finite results or a clear error, never NaN): how many pixels, and the first
+// in reading order, x from the left and y from the top row, as an image viewer counts them. The
+// command line refuses to write a rendered image that is not finite.
+std::string nonfinite_pixels(const Image& image);
+
 using Metadata = std::vector<std::pair<std::string, std::string>>;
 
 // Writes an OpenEXR file of RGBA (half or float) with each metadata entry as a string
