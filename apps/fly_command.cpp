@@ -327,8 +327,8 @@ int run_fly(const FlyArgs& args) {
     record.stats = renderer->stats();
     if (const std::string problem = nonfinite_pixels(image); !problem.empty()) {
       progress.finish();
-      print_error("frame " + std::to_string(frame) + ": " + problem + "; not written (the " +
-                  "frames before it are)");
+      print_error("frame " + std::to_string(frame) + ": " + problem +
+                  "; not written (the frames before it are)");
       return kExitRuntimeFailure;
     }
     PendingOutputs outputs;

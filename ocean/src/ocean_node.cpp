@@ -502,8 +502,8 @@ class OceanNode final : public gl::Node {
   // The grid depends on the camera alone (not on the time, the sun or a reference sample's pixel
   // offset, which the shaders apply), so a frame that sees the sea as the last one did draws the
   // buffers it left: the reference's samples, repeated and timed frames. Making and uploading it
-  // was the host's largest cost per frame, which each of a reference's up to 4,096 samples paid:
-  // for its 1-pixel cells at 128x72, about 1.7 ms of the host thread's time per sample on
+  // was the host's largest cost per frame, which every one of a reference's samples paid: for
+  // its 1-pixel cells at 128x72, about 1.7 ms of the host thread's time per sample on
   // llvmpipe (perf, stop 29; docs/validation.md).
   void draw_grid(const GridCamera& camera) {
     const double cell = grid_cell();
