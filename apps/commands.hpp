@@ -27,12 +27,14 @@ struct RenderArgs {
   std::string terms = "sun,sky,sea,air";    // the ocean's light terms, any subset
   std::string method = "full";              // the ocean's shading method (ocean/method.hpp)
   int samples = 1024;                       // the reference's most samples per pixel
+  bool fixed_samples = false;  // the reference: exactly `samples`, no stop at convergence
   int sun_cells = 256;                      // the reference's sun: most cells per pixel side
   double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
   int sun_refine = 4;                       // the reference's sun: subcells per side near glints
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)
   bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
+  std::string sun_sums;  // the reference's scattered sun's per-pixel sums (.exr); empty: none
 };
 
 struct SkyArgs {

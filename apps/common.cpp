@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -104,6 +105,35 @@ std::string format_number(double value) {
   char text[64];
   std::snprintf(text, sizeof(text), "%.9g", value);
   return text;
+}
+
+std::string nonfinite_report(const Image& image, const Renderer& renderer) {
+  std::string report = nonfinite_pixels(image);
+  if (report.empty()) return report;
+  const RenderStats stats = renderer.stats();
+  if (stats.method != "reference") return report;
+  report += "; " + std::to_string(stats.reference_nonfinite_samples) + " of the reference's " +
+            std::to_string(stats.samples) + " samples per pixel were not, in " +
+            std::to_string(stats.reference_nonfinite_pixels) + " pixels";
+  if (stats.reference_first_nonfinite_x >= 0)
+    report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " at x " +
+              std::to_string(stats.reference_first_nonfinite_x) + ", y " +
+              std::to_string(stats.reference_first_nonfinite_y);
+  // The scattered sun's sums at the image's first pixel that is not finite.
+  const Image sums = renderer.reference_sun_sums();
+  for (std::size_t p = 0; 4 * p + 3 < image.rgba.size(); ++p) {
+    const float* v = &image.rgba[4 * p];
+    if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]))
+      continue;
+    if (sums.rgba.size() == image.rgba.size()) {
+      const float* s = &sums.rgba[4 * p];
+      report += "; the sun's sums there (sum omega sun, sum omega, unresolved, hidden; sr): " +
+                format_number(s[0]) + ", " + format_number(s[1]) + ", " + format_number(s[2]) +
+                ", " + format_number(s[3]);
+    }
+    break;
+  }
+  return report;
 }
 
 Metadata render_metadata(const Scene& scene, const std::string& merged_json,

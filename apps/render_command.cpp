@@ -43,6 +43,14 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_float_atomics"] = stats.sun_lattice_float_atomics;
   }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
+  if (stats.method == "reference") {
+    json["reference_nonfinite_samples"] = stats.reference_nonfinite_samples;
+    json["reference_nonfinite_pixels"] = stats.reference_nonfinite_pixels;
+    if (stats.reference_first_nonfinite_x >= 0)
+      json["reference_first_nonfinite"] = {{"x", stats.reference_first_nonfinite_x},
+                                           {"y", stats.reference_first_nonfinite_y},
+                                           {"samples", stats.reference_first_nonfinite_samples}};
+  }
   json["sky_provider"] = stats.sky_provider;
   json["setup_ms"] = nlohmann::ordered_json::object();
   for (const auto& [name, ms] : stats.setup_ms) json["setup_ms"][name] = ms;
@@ -88,6 +96,10 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
           "strata)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
+  render->add_flag("--fixed-samples", args.fixed_samples,
+                   "The reference draws exactly --samples samples per pixel, converged or not "
+                   "(the same 4 x 4 strata and sample points): as validate draws a flicker "
+                   "frame after the first, with the first frame's count");
   render
       ->add_option("--reference-sun", args.reference_sun,
                    "How the reference integrates the sun over cells of the sea: scattered (once "
@@ -124,6 +136,12 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "even where the driver has float atomics (GL_NV_shader_atomic_float); the "
                    "same image to float rounding, for timing the two (--stats "
                    "sun_lattice_ms, sun_lattice_float_atomics)");
+  render->add_option(
+      "--sun-sums", args.sun_sums,
+      "The reference's sun, scattered: write its lattice's per-pixel sums as a float EXR (R sum "
+      "of solid angle x sun, G sum of solid angle, sr: the pixel's sun factor is R / G; B the part "
+      "of G over the cell cap; A the solid angle hidden behind crests, sr), also when the image "
+      "is refused for not being finite");
   render
       ->add_option("--sun-refine", args.sun_refine,
                    "The reference's sun, scattered: cells whose slopes come near the mirror slope "
@@ -151,6 +169,7 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.max_samples = args.samples;
   renderer_options.reference.min_samples =
       std::min(renderer_options.reference.min_samples, args.samples);
+  renderer_options.reference.fixed_samples = args.fixed_samples;
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
   renderer_options.reference.sun_refine = args.sun_refine;
@@ -173,8 +192,16 @@ int run_render(const RenderArgs& args) {
       parse_terms(args.terms, renderer_options.terms), check_output("-o", args.exr, ".exr"),
       png.empty() ? "" : check_output("--png", png, ".png"),
       args.stats.empty() ? "" : check_output("--stats", args.stats, ""),
+      args.sun_sums.empty() ? "" : check_output("--sun-sums", args.sun_sums, ".exr"),
+      args.sun_sums.empty() || (renderer_options.method == ocean::OceanMethod::reference &&
+                                renderer_options.terms.sun &&
+                                renderer_options.reference.sun == ReferenceSun::scattered)
+          ? ""
+          : "--sun-sums: expected --method reference with the term sun and --reference-sun "
+            "scattered (the sums are its lattice's)",
+      args.sun_sums.empty() ? "" : check_distinct("--sun-sums", args.sun_sums, {args.exr, png}),
       // The image outputs differ by extension; the statistics may name either of them.
-      args.stats.empty() ? "" : check_distinct("--stats", args.stats, {args.exr, png})};
+      args.stats.empty() ? "" : check_distinct("--stats", args.stats, {args.exr, png, args.sun_sums})};
   for (const std::string& problem : problems) {
     if (!problem.empty()) {
       print_error(problem);
@@ -206,14 +233,23 @@ int run_render(const RenderArgs& args) {
   }
   const Image image = renderer.image();
   const RenderStats stats = renderer.stats();
-  // An image that is not finite is an error, not a file; the statistics, when asked for, are
-  // still written, since they say what the render did.
-  if (const std::string problem = nonfinite_pixels(image); !problem.empty()) {
-    if (!args.stats.empty()) {
-      PendingOutputs stats_only;
-      write_text_atomically(stats_only.add(args.stats), stats_json(stats));
-      stats_only.commit();
-    }
+  const Image sun_sums = args.sun_sums.empty() ? Image{} : renderer.reference_sun_sums();
+  if (!args.sun_sums.empty() && sun_sums.rgba.empty()) {
+    print_error("--sun-sums: the render drew no scattered sun");  // checked above: not expected
+    return kExitRuntimeFailure;
+  }
+  const Metadata sun_sums_metadata = {
+      {"thalassa:channels",
+       "R sum omega sun, G sum omega, B the part of G over the cell cap, A hidden solid angle "
+       "(sr; shaders/ocean/reference_sun_scatter.comp)"}};
+  // An image that is not finite is an error, not a file; the statistics and the sun's sums, when
+  // asked for, are still written, since they say what the render did.
+  if (const std::string problem = nonfinite_report(image, renderer); !problem.empty()) {
+    PendingOutputs diagnostics;
+    if (!args.stats.empty()) write_text_atomically(diagnostics.add(args.stats), stats_json(stats));
+    if (!sun_sums.rgba.empty())
+      write_exr(diagnostics.add(args.sun_sums), sun_sums, ExrPixelType::Float, sun_sums_metadata);
+    diagnostics.commit();
     print_error("the rendered image: " + problem + "; no image written");
     return kExitRuntimeFailure;
   }
@@ -228,6 +264,8 @@ int run_render(const RenderArgs& args) {
   if (!png.empty())
     write_png(outputs.add(png), image, scene.image.exposure, {{"Software", "thalassa"}});
   if (!args.stats.empty()) write_text_atomically(outputs.add(args.stats), stats_json(stats));
+  if (!sun_sums.rgba.empty())
+    write_exr(outputs.add(args.sun_sums), sun_sums, ExrPixelType::Float, sun_sums_metadata);
   outputs.commit();
   return kExitOk;
 }

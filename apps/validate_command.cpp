@@ -51,6 +51,8 @@ struct Rendered {
   // frames with each sea pixel's sea alone (validation::reference_for_comparison).
   std::vector<Image> compared;
   RenderStats stats;
+  // Per frame: what in it is not finite (nonfinite_report), "" when nothing.
+  std::vector<std::string> problems;
 };
 
 // The reference's sun lattice as drawn (RenderStats::sun_lattice_cells_per_wavelength and
@@ -223,7 +225,7 @@ class CaseRunner {
             rendered.compared[k] = validation::reference_for_comparison(
                 rendered.frames[k], rendered.compared[k], view.sea_mask());
         for (std::size_t k = 0; k < rendered.frames.size(); ++k)
-          if (const std::string problem = nonfinite_pixels(rendered.frames[k]);
+          if (const std::string& problem = rendered.problems[k];
               !problem.empty() && result.exit_status != kExitRuntimeFailure) {
             result.exit_status = kExitRuntimeFailure;
             result.message =
@@ -356,6 +358,7 @@ class CaseRunner {
       Renderer renderer(context_, s, options);
       renderer.render();
       rendered.frames.push_back(renderer.image());
+      rendered.problems.push_back(nonfinite_report(rendered.frames.back(), renderer));
       // The reference's sea alone (its pixels merged with image()'s by render_case); other
       // methods compare as drawn.
       rendered.compared.push_back(options.method == ocean::OceanMethod::reference

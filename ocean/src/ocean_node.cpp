@@ -361,6 +361,24 @@ class OceanNode final : public gl::Node {
     return {{"reference_sun.lattice_row_changes", lattice_row_changes_}};
   }
 
+  // "reference_sun.sums": the scattered sun's per-pixel sums as the lighting pass read them
+  // (reference_sun_scatter.comp, Output): sum omega sun (sr), sum omega (sr), the part of sum
+  // omega from footprints over the cell cap (sr), the solid angle hidden behind the grid's
+  // crests (sr); rows top first like every Image.
+  std::vector<std::pair<std::string, Image>> pixel_measurements() const override {
+    if (!reference_sun_scatter() || scatter_ms_ < 0.0 || !has_scatter_key_) return {};
+    const int width = scatter_key_.width, height = scatter_key_.height;
+    std::vector<float> sums(4 * std::size_t(width) * std::size_t(height));
+    if (sums.size() != reference_sun_floats_) return {};
+    glGetNamedBufferSubData(reference_sun_buffer_.get(), 0,
+                            static_cast<GLsizeiptr>(sums.size() * sizeof(float)), sums.data());
+    Image image{width, height, std::vector<float>(sums.size())};
+    for (int y = 0; y < height; ++y)  // the buffer's rows are window rows, from the bottom
+      std::copy_n(&sums[4 * std::size_t(height - 1 - y) * width], 4 * std::size_t(width),
+                  image.pixel(0, y));
+    return {{"reference_sun.sums", std::move(image)}};
+  }
+
  private:
   // Phases wrapped in double on the CPU (issue 3, point 7) at the nadir's place in the waves'
   // chart, and wave vectors turned from the chart's axes into the nadir frame's

@@ -279,6 +279,7 @@ struct Renderer::Impl {
       double weight = 0.0;       // sum of w
       int sea = 0;               // the sea's samples
       int resolved = 0;          // samples whose sun resolved every wave (the sky's count)
+      int nonfinite = 0;         // samples whose radiance was not finite (counted as given)
       // The sea's samples averaged with their weights (0 without any).
       glm::dvec3 sea_mean() const {
         return weight > 0.0 ? weighted / weight : sea > 0 ? plain / double(sea) : glm::dvec3(0.0);
@@ -328,6 +329,8 @@ struct Renderer::Impl {
           const float* p = &rgba[4 * i];
           const glm::dvec3 radiance(p[0], p[1], p[2]);
           PixelSums& sum = sums[i];
+          if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
+            ++sum.nonfinite;
           const double code = std::abs(double(p[3]));
           if (code >= kReferenceSeaAlpha) {
             // The shader's weight is finite for finite input; a sample that is not counts as 0.
@@ -370,6 +373,19 @@ struct Renderer::Impl {
       average[4 * i + 2] = float(p.b);
       average[4 * i + 3] = 1.0f;  // like every other image's
     }
+    nonfinite_samples = 0;
+    nonfinite_pixels = 0;
+    first_nonfinite_x = first_nonfinite_y = -1;
+    first_nonfinite_samples = 0;
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      if (sums[i].nonfinite == 0) continue;
+      nonfinite_samples += sums[i].nonfinite;
+      if (nonfinite_pixels++ == 0) {
+        first_nonfinite_x = int(i % std::size_t(width));
+        first_nonfinite_y = int(i / std::size_t(width));  // read_rgba_top_down: from the top
+        first_nonfinite_samples = sums[i].nonfinite;
+      }
+    }
     // With the reference's sun, each row's fraction of samples whose sun resolved every wave.
     resolved_rows.clear();
     if (renderer_options.terms.sun) {
@@ -410,6 +426,15 @@ struct Renderer::Impl {
     return {};
   }
 
+  // A node's per-pixel measurement (gl::Node::pixel_measurements) by name; empty when no node
+  // has it. The context must be current.
+  Image node_pixel_measurement(const std::string& name) const {
+    for (const auto& node : graph.nodes())
+      for (auto& [key, image] : node->pixel_measurements())
+        if (key == name) return std::move(image);
+    return {};
+  }
+
   // The reference's sea samples write |alpha| >= this (shaders/ocean/ocean_lighting.frag,
   // REFERENCE_SEA_ALPHA: 2 + the sample's weight), every other pass 1.
   static constexpr double kReferenceSeaAlpha = 2.0;
@@ -432,6 +457,10 @@ struct Renderer::Impl {
   double sample_row_change = 0.0;
   std::vector<double> sample_row_changes;  // RenderStats::sample_row_changes
   std::vector<double> resolved_rows;
+  // RenderStats::reference_nonfinite_*, of the last draw_reference.
+  long long nonfinite_samples = 0;
+  int nonfinite_pixels = 0;
+  int first_nonfinite_x = -1, first_nonfinite_y = -1, first_nonfinite_samples = 0;
   std::vector<float> sea_rgba;  // Renderer::reference_sea_image's pixels, top row first
 };
 
@@ -490,6 +519,12 @@ Image Renderer::reference_sea_image() const {
   return image;
 }
 
+Image Renderer::reference_sun_sums() const {
+  if (impl_->renderer_options.method != ocean::OceanMethod::reference) return {};
+  impl_->context.make_current();
+  return impl_->node_pixel_measurement("reference_sun.sums");
+}
+
 unsigned Renderer::hdr_texture() const { return impl_->target.color_texture(); }
 unsigned Renderer::hdr_framebuffer() const { return impl_->target.framebuffer(); }
 
@@ -545,6 +580,11 @@ RenderStats Renderer::stats() const {
   if (m.renderer_options.method == ocean::OceanMethod::reference && m.renderer_options.terms.sun)
     stats.reference_sun = reference_sun_name(m.renderer_options.reference.sun);
   stats.resolved_rows = m.resolved_rows;
+  stats.reference_nonfinite_samples = m.nonfinite_samples;
+  stats.reference_nonfinite_pixels = m.nonfinite_pixels;
+  stats.reference_first_nonfinite_x = m.first_nonfinite_x;
+  stats.reference_first_nonfinite_y = m.first_nonfinite_y;
+  stats.reference_first_nonfinite_samples = m.first_nonfinite_samples;
   stats.sun_lattice_row_change = m.node_measurement("reference_sun.lattice_row_change");
   stats.sun_lattice_rows = static_cast<int>(m.node_measurement("reference_sun.lattice_rows"));
   stats.sun_lattice_ms = m.node_measurement("reference_sun.ms");

@@ -276,6 +276,49 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   }
 }
 
+// --fixed-samples draws exactly --samples (as validate draws a flicker frame after the first);
+// --sun-sums writes the scattered sun's per-pixel sums as a float EXR of the image's size, whose
+// solid angles cover the sea; the statistics count the samples that were not finite (none).
+// Both are refused where they mean nothing, before anything renders.
+TEST_F(Cli, ReferenceFixedSamplesAndSunSums) {
+  ASSERT_EQ(run("render " + kSmall +
+                " --no-png --method reference --samples 64 --fixed-samples --sun-cells 32 "
+                "-o fixed.exr --sun-sums sums.exr --stats fixed.json")
+                .status,
+            0);
+  std::ifstream in(dir_ / "fixed.json");
+  const auto stats = nlohmann::json::parse(in);
+  EXPECT_EQ(stats["samples"], 64);
+  EXPECT_EQ(stats["reference_nonfinite_samples"], 0);
+  EXPECT_EQ(stats["reference_nonfinite_pixels"], 0);
+  EXPECT_FALSE(stats.contains("reference_first_nonfinite"));
+  thalassa::Metadata metadata;
+  const auto sums = thalassa::read_image((dir_ / "sums.exr").string(), &metadata);
+  EXPECT_EQ(sums.width, 32);
+  EXPECT_EQ(sums.height, 24);
+  int sea = 0;
+  for (std::size_t i = 0; i < sums.rgba.size(); i += 4) {
+    for (int c = 0; c < 4; ++c) EXPECT_GE(sums.rgba[i + c], 0.0f);
+    if (sums.rgba[i + 1] > 0.0f) {
+      ++sea;
+      EXPECT_TRUE(std::isfinite(sums.rgba[i] / sums.rgba[i + 1]));
+    }
+  }
+  EXPECT_GT(sea, 32 * 24 / 4);  // the default view's sea: the lower half and more
+  EXPECT_TRUE(std::any_of(metadata.begin(), metadata.end(),
+                          [](const auto& m) { return m.first == "thalassa:channels"; }));
+  for (const std::string& pointless :
+       {std::string("--method full"), std::string("--method reference --terms sky"),
+        std::string("--method reference --reference-sun gathered")}) {
+    const Result refused =
+        run("render " + kSmall + " " + pointless + " --sun-sums pointless.exr -o p.exr");
+    EXPECT_EQ(refused.status, 2) << pointless;
+    EXPECT_NE(refused.err.find("--sun-sums"), std::string::npos) << refused.err;
+    EXPECT_FALSE(fs::exists(dir_ / "pointless.exr")) << pointless;
+    EXPECT_FALSE(fs::exists(dir_ / "p.exr")) << pointless;
+  }
+}
+
 TEST_F(Cli, SceneFileAndSetOverride) {
   write("scene.json", R"({"image": {"width": 20, "height": 10}, "camera": {"pitch": 10}})");
   ASSERT_EQ(run("render scene.json --set image.height=12 -o a.exr --png b.png").status, 0);

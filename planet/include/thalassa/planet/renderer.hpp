@@ -90,6 +90,16 @@ struct RenderStats {
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
   std::vector<double> resolved_rows;
+  // The reference method: its samples whose radiance was not finite (a pixel's mean over its
+  // samples is then not finite either), the pixels that had any, and the first of them (x, y
+  // from the image's top left; -1, -1 when none) with its count of them. A pixel whose every
+  // sample is not finite points at what its samples share (the scattered sun's sums,
+  // Renderer::reference_sun_sums), one with a few at a sample's own shading.
+  long long reference_nonfinite_samples = 0;
+  int reference_nonfinite_pixels = 0;
+  int reference_first_nonfinite_x = -1;
+  int reference_first_nonfinite_y = -1;
+  int reference_first_nonfinite_samples = 0;
   // One-off costs, wall-clock ms: "sky.provider" (creating it, the atmosphere's tables computed
   // or loaded from the cache included), "atmosphere.precompute" / "atmosphere.load",
   // "sky.map", "sky.map_array", "features.place" (culling and placing the scene's wakes and calm
@@ -237,6 +247,14 @@ class Renderer {
   // validation compares their sea with this (validation::reference_for_comparison). An empty
   // image (0 x 0) for the other methods.
   Image reference_sea_image() const;
+  // The reference method with its sun scattered (after render()): the lattice's per-pixel sums
+  // the lighting read (shaders/ocean/reference_sun_scatter.comp, Output), rows top first: R sum
+  // omega sun (sr; a pixel's sun factor is R / G), G sum omega (sr: the solid angle of the visible
+  // sea whose cells' centres the pixel sees), B the part of G from footprints over the cell cap
+  // (sr: the pixel is unresolved where B > G / 2), A the solid angle of the cells hidden behind
+  // the grid's crests (sr). For researchers checking the reference, and for finding where a pixel
+  // went wrong. An empty image (0 x 0) otherwise.
+  Image reference_sun_sums() const;
   // GL names of the HDR colour texture (RGBA32F) and its framebuffer, for host applications.
   unsigned hdr_texture() const;
   unsigned hdr_framebuffer() const;

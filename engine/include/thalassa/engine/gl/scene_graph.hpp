@@ -13,6 +13,7 @@
 #include "thalassa/engine/gl/hdr_target.hpp"
 #include "thalassa/engine/gl/objects.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/engine/image.hpp"
 
 namespace thalassa::gl {
 
@@ -95,6 +96,9 @@ class Node {
   virtual std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const {
     return {};
   }
+  // The same, four numbers per pixel of the image (rows top first), read back from the GPU: the
+  // node's GL context must be current. Each name says what its channels hold.
+  virtual std::vector<std::pair<std::string, Image>> pixel_measurements() const { return {}; }
 };
 
 class SceneGraph {
