@@ -204,6 +204,31 @@ float GridAlong(ivec2 pixel) {
   return depth > 0.0 ? OCEAN_NEAR_PLANE / depth : 1.0 / 0.0;
 }
 
+// m: a forward distance past every cell, for a neighbour beyond the sea's horizon.
+const float BEYOND_HORIZON = 1e30;
+
+// The forward distance (m) of the grid's surface at the pixel xy + offset, a neighbour of the
+// image's pixel xy; +inf where the grid drew nothing there. Beyond the image, where the grid's
+// depth was not kept, it is extrapolated from xy and its neighbour on the other side: linearly in
+// the depth, which is linear on the screen over a plane (1 / forward distance, as perspective
+// interpolates), so that over a calm sea an edge pixel's half beyond its centre is not hidden
+// (clamped to the edge, the top row of a view pitched below the horizon lost that half:
+// tests/gpu/method_test.cpp, ScatteredSunsSolidAnglesAreThePixels); BEYOND_HORIZON where the
+// extrapolation passes the horizon, +inf (nothing known) where xy or that neighbour drew nothing.
+float NeighbourAlong(ivec2 xy, ivec2 offset) {
+  const ivec2 size = ivec2(frame_viewport.xy);
+  const ivec2 neighbour = xy + offset;
+  if (all(greaterThanEqual(neighbour, ivec2(0))) && all(lessThan(neighbour, size)))
+    return GridAlong(neighbour);
+  const ivec2 inward = xy - offset;
+  if (!(all(greaterThanEqual(inward, ivec2(0))) && all(lessThan(inward, size)))) return 1.0 / 0.0;
+  const float edge = texelFetch(grid_depth, xy, 0).r;
+  const float inner = texelFetch(grid_depth, inward, 0).r;
+  if (!(edge > 0.0 && inner > 0.0)) return 1.0 / 0.0;
+  const float depth = 2.0 * edge - inner;
+  return depth > 0.0 ? OCEAN_NEAR_PLANE / depth : BEYOND_HORIZON;
+}
+
 // Whether the displaced point p (m, nadir frame), seen in pixel `pixel` (PixelOf), lies no
 // farther than the farthest surface the grid shows in that pixel, give or take `unresolved_height`
 // (m: the heights of the waves the grid cannot draw) along the view.
@@ -216,7 +241,7 @@ bool GridShows(vec3 p, int pixel, float unresolved_height) {
   float farthest = centre;
   for (int k = 0; k < 4; ++k) {
     const ivec2 o = k == 0 ? ivec2(1, 0) : k == 1 ? ivec2(-1, 0) : k == 2 ? ivec2(0, 1) : ivec2(0, -1);
-    const float neighbour = GridAlong(xy + o);
+    const float neighbour = NeighbourAlong(xy, o);
     if (!isinf(neighbour)) farthest = max(farthest, 0.5 * (centre + neighbour));
   }
   // A height h moves the surface along the view by h / sin(elevation of the view).

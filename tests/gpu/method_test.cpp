@@ -662,6 +662,70 @@ TEST(OceanMethods, ReferenceSunOnACalmSeaIsTheMirrorsSun) {
   }
 }
 
+// The solid angle (sr) of the pinhole pixel whose image-plane tangents run from (x0, y0) to
+// (x1, y1) (the image plane at unit distance): the integral of (1 + x^2 + y^2)^(-3/2) over the
+// rectangle, whose antiderivative is atan(x y / sqrt(1 + x^2 + y^2)).
+double pixel_solid_angle(double x0, double y0, double x1, double y1) {
+  const auto f = [](double x, double y) { return std::atan(x * y / std::sqrt(1 + x * x + y * y)); };
+  return f(x1, y1) - f(x0, y1) - f(x1, y0) + f(x0, y0);
+}
+
+// The scattered sun's footprints tile the sea in view (reference_sun_scatter.comp, The lattice):
+// on a calm sea, where nothing hides anything and every cell lies in the pixel of its footprint,
+// each pixel's sum of its cells' solid angles (Renderer::reference_sun_sums, G) is the pixel's
+// own solid angle, to the midpoint rule's error per cell and the float sums'. Nothing is hidden
+// (A) or over the cap (B), and the sun factor R / G is finite everywhere. A footprint that did
+// not reach its pixel's edges, or a cell counted twice or put in its neighbour, moves a pixel by
+// 1 / cells: 1/4000 at the coarsest here.
+TEST(OceanMethods, ScatteredSunsSolidAnglesAreThePixels) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.ocean.wind_speed = 0.0;
+  // Cells of 10/16 m: 4 per side of the nearest footprint, 170 of the farthest (under the cap of
+  // 256, so that every pixel is resolved).
+  scene.ocean.lambda_min = 10.0;
+  scene.image.width = 24;
+  scene.image.height = 16;
+  RendererOptions options;
+  options.method = ocean::OceanMethod::reference;
+  options.terms = {true, false, false, false};
+  options.reference.min_samples = 1;
+  options.reference.max_samples = 1;
+  Renderer renderer(*context, scene, options);
+  renderer.render();
+  const Image sums = renderer.reference_sun_sums();
+  ASSERT_EQ(sums.width, scene.image.width);
+  ASSERT_EQ(sums.height, scene.image.height);
+  // The image's top edge is 10 degrees below the horizon (pitch -25, fov 30): all sea.
+  const double tan_y = std::tan(0.5 * scene.camera.fov_y * M_PI / 180.0);
+  const double tan_x = tan_y * double(scene.image.width) / scene.image.height;
+  double worst = 0.0, total = 0.0, expected_total = 0.0;
+  for (int y = 0; y < sums.height; ++y)
+    for (int x = 0; x < sums.width; ++x) {
+      const float* s = sums.pixel(x, y);
+      // Image row y from the top: its tangent runs from 1 - 2 (y + 1) / h to 1 - 2 y / h.
+      const double omega = pixel_solid_angle(
+          tan_x * (2.0 * x / sums.width - 1.0), tan_y * (1.0 - 2.0 * (y + 1) / sums.height),
+          tan_x * (2.0 * (x + 1) / sums.width - 1.0), tan_y * (1.0 - 2.0 * y / sums.height));
+      worst = std::max(worst, std::abs(s[1] / omega - 1.0));
+      total += s[1];
+      expected_total += omega;
+      EXPECT_EQ(s[2], 0.0f) << x << ", " << y;
+      EXPECT_EQ(s[3], 0.0f) << x << ", " << y;
+      EXPECT_TRUE(std::isfinite(s[0] / s[1])) << x << ", " << y;
+    }
+  std::printf("calm sea: each pixel's cells' solid angle against the pixel's, worst %.2e; the "
+              "image's against its solid angle %.2e\n",
+              worst, total / expected_total - 1.0);
+  EXPECT_LT(worst, 1e-4);
+  EXPECT_NEAR(total / expected_total, 1.0, 1e-5);
+  // Not the reference: no sums.
+  options.method = ocean::OceanMethod::full;
+  Renderer full(*context, scene, options);
+  full.render();
+  EXPECT_TRUE(full.reference_sun_sums().rgba.empty());
+}
+
 TEST(OceanMethods, OtherMethodsRefuseTheViewFromSpace) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(25000.0);
