@@ -112,12 +112,13 @@ std::string nonfinite_report(const Image& image, const Renderer& renderer) {
   if (report.empty()) return report;
   const RenderStats stats = renderer.stats();
   if (stats.method != "reference") return report;
-  report += "; " + std::to_string(stats.reference_nonfinite_samples) + " of the reference's " +
-            std::to_string(stats.samples) + " samples per pixel were not, in " +
+  const std::string per_pixel = std::to_string(stats.samples);
+  report += "; the reference's samples (" + per_pixel + " per pixel): " +
+            std::to_string(stats.reference_nonfinite_samples) + " not finite, in " +
             std::to_string(stats.reference_nonfinite_pixels) + " pixels";
   if (stats.reference_first_nonfinite_x >= 0)
-    report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " at x " +
-              std::to_string(stats.reference_first_nonfinite_x) + ", y " +
+    report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " of " +
+              per_pixel + " at x " + std::to_string(stats.reference_first_nonfinite_x) + ", y " +
               std::to_string(stats.reference_first_nonfinite_y);
   // The scattered sun's sums at the image's first pixel that is not finite.
   const Image sums = renderer.reference_sun_sums();

@@ -201,7 +201,8 @@ int run_render(const RenderArgs& args) {
             "scattered (the sums are its lattice's)",
       args.sun_sums.empty() ? "" : check_distinct("--sun-sums", args.sun_sums, {args.exr, png}),
       // The image outputs differ by extension; the statistics may name either of them.
-      args.stats.empty() ? "" : check_distinct("--stats", args.stats, {args.exr, png, args.sun_sums})};
+      args.stats.empty() ? ""
+                         : check_distinct("--stats", args.stats, {args.exr, png, args.sun_sums})};
   for (const std::string& problem : problems) {
     if (!problem.empty()) {
       print_error(problem);

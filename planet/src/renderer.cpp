@@ -329,8 +329,7 @@ struct Renderer::Impl {
           const float* p = &rgba[4 * i];
           const glm::dvec3 radiance(p[0], p[1], p[2]);
           PixelSums& sum = sums[i];
-          if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2])))
-            ++sum.nonfinite;
+          if (!(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]))) ++sum.nonfinite;
           const double code = std::abs(double(p[3]));
           if (code >= kReferenceSeaAlpha) {
             // The shader's weight is finite for finite input; a sample that is not counts as 0.

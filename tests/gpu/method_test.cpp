@@ -714,9 +714,10 @@ TEST(OceanMethods, ScatteredSunsSolidAnglesAreThePixels) {
       EXPECT_EQ(s[3], 0.0f) << x << ", " << y;
       EXPECT_TRUE(std::isfinite(s[0] / s[1])) << x << ", " << y;
     }
-  std::printf("calm sea: each pixel's cells' solid angle against the pixel's, worst %.2e; the "
-              "image's against its solid angle %.2e\n",
-              worst, total / expected_total - 1.0);
+  std::printf(
+      "calm sea: each pixel's cells' solid angle against the pixel's, worst %.2e; the "
+      "image's against its solid angle %.2e\n",
+      worst, total / expected_total - 1.0);
   EXPECT_LT(worst, 1e-4);
   EXPECT_NEAR(total / expected_total, 1.0, 1e-5);
   // Not the reference: no sums.
