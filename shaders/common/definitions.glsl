@@ -6,7 +6,8 @@
 //
 // - Scalars are `Number`, vectors vec2 / vec3 / vec4. Casts are written `Number(x)`, never
 //   `float(x)`. Literals are written `1.0` (float in GLSL, double in C++), never `1.0f` or `1`.
-// - Parameters are declared with IN(T), OUT(T) or INOUT(T).
+// - Parameters are declared with IN(T), OUT(T) or INOUT(T). PRECISE is GLSL's `precise` (the
+//   same operations in the same order wherever the expression is computed), empty in C++.
 // - Components are read and written only as .x / .y / .z / .w: no swizzles (glm offers them only
 //   with GLM_FORCE_SWIZZLE, which would change the glm types for the whole program).
 // - Only the built-ins that common/glsl_cpp.hpp provides (it lists them), no arrays, no uniforms
@@ -29,6 +30,7 @@
 #define IN(x) const in x
 #define OUT(x) out x
 #define INOUT(x) inout x
+#define PRECISE precise
 #endif  // THALASSA_CPP
 
 const Number PI = 3.14159265358979323846;

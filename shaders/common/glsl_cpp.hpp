@@ -50,6 +50,9 @@
 #define IN(x) const x&
 #define OUT(x) x&
 #define INOUT(x) x&
+// GLSL's `precise` (the same operations in the same order wherever an expression is computed);
+// C++ without -ffast-math already keeps them.
+#define PRECISE
 
 namespace thalassa::glsl {
 

@@ -263,18 +263,39 @@ vec3 RestCorner(vec2 w, out bool hit) {
   return vec3(p.x, p.y, ReferenceRestHeight(frame_sea_curvature, vec2(p.x, p.y)));
 }
 
-// One lattice corner at the rest point's horizontal position xy (m, nadir frame): its displaced
-// position (m, nadir frame), its displaced area vector per unit rest area d_dx x d_dy (nadir
-// frame) and that vector in its own tangent frame scaled to unit z (the facet normal f of
+// m, nadir frame: the horizontal rest position of the footprint the invocation scatters (its
+// corner q00), from which its corners' positions are given (Corner.rest, ReferenceCorner).
+vec2 footprint_origin = vec2(0.0);
+
+// Why the corners are given from the footprint's origin (stop 31). A wave's argument, theta =
+// Phi - k.x (trochoids.glsl, TrochoidArgument), reaches k |x| = 157 rad/m x 25 m = 3,900 rad for the 4 m cases'
+// shortest wave (0.04 m) 25 m ahead, where a float's step is 2.4e-4 rad; the corner's own xy,
+// rounded to float at 25 m, adds 2e-6 m x 157. At 128 cells per wavelength and 8 x 8 subcells a
+// subcell's edge is 3.9e-5 m, 6e-3 rad of that wave, so the slope differences across it, which
+// make its parallelogram, carried a rounding noise of 1.5 % rms and its determinant 3.4 % (1.1 %
+// at 8 m; measured in float against double on the 30-wave 20 m/s sea; 0.16-0.40 % at 16 per
+// wavelength). Near a fold of the slope map, where det is small and the brightest glints are,
+// that noise is a large part of det, and it grows as the cells shrink: stop 30's H200 saw that
+// reference move rows by 2.2, 3.2 and 5.1 % at 16, 45 and 128 per wavelength. Split as theta =
+// Phi_o - k.(x - o) (TrochoidArgumentFrom), Phi_o the same float for every corner of the
+// footprint, and x - o the corner's offset in the footprint (bilinear in the footprint's edges,
+// so exact to the footprint's size), the noise is 0.05-0.06 % of det at 128 (the same measure).
+// Phi_o's own rounding (up to 2.4e-4 rad) is common to the footprint: it moves each footprint's
+// waves by at most 2 micrometres, and no corner relative to its neighbours.
+//
+// One lattice corner at the offset `local` (m, nadir frame's axes) from footprint_origin: its
+// displaced position (m, nadir frame), its displaced area vector per unit rest area d_dx x d_dy
+// (nadir frame) and that vector in its own tangent frame scaled to unit z (the facet normal f of
 // ReferenceCellFrameSlope: (-zeta, 1) in the rest tangent frame), turned into the nadir frame.
 struct Corner {
   vec3 position;
   vec3 area;
   vec3 facet;
-  vec2 rest;  // m, nadir frame: the rest point's horizontal position it was computed at
+  vec2 rest;  // m: the offset `local` from footprint_origin it was computed at
 };
 
-Corner ReferenceCorner(vec2 xy) {
+Corner ReferenceCorner(vec2 local) {
+  const vec2 xy = footprint_origin + local;
   const vec3 x = vec3(xy, ReferenceRestHeight(frame_sea_curvature, xy));
   vec3 displacement = vec3(0.0);
   vec3 d_dx = vec3(0.0), d_dy = vec3(0.0);
@@ -282,7 +303,7 @@ Corner ReferenceCorner(vec2 xy) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
     const vec2 direction = vec2(a.x, a.y);
-    const float argument = TrochoidArgument(a.z * direction, b.x, xy);
+    const float argument = TrochoidArgumentFrom(a.z * direction, b.x, footprint_origin, local);
     displacement += TrochoidDisplacement(direction, a.w, argument);
     vec3 wave_dx, wave_dy;
     TrochoidDisplacementDerivatives(direction, a.z, a.w, argument, wave_dx, wave_dy);
@@ -309,7 +330,7 @@ Corner ReferenceCorner(vec2 xy) {
   corner.position = x + frame * displacement;
   corner.area = frame * n_local;
   corner.facet = frame * vec3(n_local.xy / max(n_local.z, 1e-6), 1.0);
-  corner.rest = xy;
+  corner.rest = local;
   return corner;
 }
 
@@ -531,25 +552,32 @@ void main() {
   const float unresolved = cells.z;
   const float unresolved_height = cells.w;
   const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
-  const vec2 q00 = q0.xy, q10 = q0.zw, q01 = q1.xy, q11 = q1.zw;
+  // The corners from the footprint's q00 (footprint_origin: see ReferenceCorner).
+  footprint_origin = q0.xy;
+  const vec2 q10 = q0.zw - footprint_origin, q01 = q1.xy - footprint_origin;
+  const vec2 q11 = q1.zw - footprint_origin;
   // The rows j and j + 1 of corners, cells first to last - 1 of them, left to right, two corners
-  // at a time.
+  // at a time (offsets from footprint_origin; the rest heights at their positions).
   const float v0 = float(j) / float(ky), v1 = float(j + 1) / float(ky);
-  const vec2 a0 = mix(q00, q01, v0), b0 = mix(q10, q11, v0);
-  const vec2 a1 = mix(q00, q01, v1), b1 = mix(q10, q11, v1);
+  const vec2 a0 = v0 * q01, b0 = mix(q10, q11, v0);
+  const vec2 a1 = v1 * q01, b1 = mix(q10, q11, v1);
   const float u0 = float(first) / float(kx);
   const vec2 first_low = mix(a0, b0, u0), first_high = mix(a1, b1, u0);
   Corner low = ReferenceCorner(first_low);
   Corner high = ReferenceCorner(first_high);
-  vec3 low_rest = vec3(first_low, ReferenceRestHeight(frame_sea_curvature, first_low));
-  vec3 high_rest = vec3(first_high, ReferenceRestHeight(frame_sea_curvature, first_high));
+  vec3 low_rest =
+      vec3(first_low, ReferenceRestHeight(frame_sea_curvature, footprint_origin + first_low));
+  vec3 high_rest =
+      vec3(first_high, ReferenceRestHeight(frame_sea_curvature, footprint_origin + first_high));
   for (int i = first + 1; i <= last; ++i) {
     const float u = float(i) / float(kx);
     const vec2 low_xy = mix(a0, b0, u), high_xy = mix(a1, b1, u);
     const Corner next_low = ReferenceCorner(low_xy);
     const Corner next_high = ReferenceCorner(high_xy);
-    const vec3 next_low_rest = vec3(low_xy, ReferenceRestHeight(frame_sea_curvature, low_xy));
-    const vec3 next_high_rest = vec3(high_xy, ReferenceRestHeight(frame_sea_curvature, high_xy));
+    const vec3 next_low_rest =
+        vec3(low_xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + low_xy));
+    const vec3 next_high_rest =
+        vec3(high_xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + high_xy));
     // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
     const vec3 e_u = 0.5 * ((next_low_rest - low_rest) + (next_high_rest - high_rest));
     const vec3 e_v = 0.5 * ((high_rest - low_rest) + (next_high_rest - next_low_rest));

@@ -65,6 +65,23 @@ Number TrochoidArgument(IN(vec2) wave_vector, IN(Number) phase, IN(vec2) positio
   return phase - dot(wave_vector, position);
 }
 
+// The same argument at the point origin + local (metres, local east-north-up; origin as
+// `position` above, local a small offset from it), as theta = Phi_o - k.local with Phi_o =
+// (phase - k.origin) mod 2 pi: for many points near one origin whose arguments' differences
+// matter, not their common value (the reference's lattice, ocean/reference_sun_scatter.comp).
+// In float, phase - k.position is a number up to |k| |position| (3,900 rad for a 0.04 m wave 25 m
+// away) rounded to 2.4e-4 rad, independently at each point, as is the position itself; here
+// Phi_o carries that rounding but is the same float for every point of one origin (PRECISE),
+// and k.local is small, so the differences between nearby points keep their digits
+// (tests/gpu/numerics_test.cpp, GpuNumericsTest.TrochoidArgumentFromAnOrigin). Phi_o's rounding
+// moves all the points of one origin together, by at most 2.4e-4 rad / |k|.
+Number TrochoidArgumentFrom(IN(vec2) wave_vector, IN(Number) phase, IN(vec2) origin,
+                            IN(vec2) local) {
+  PRECISE Number origin_phase = phase - dot(wave_vector, origin);
+  origin_phase = origin_phase - 2.0 * PI * floor(origin_phase / (2.0 * PI));
+  return origin_phase - dot(wave_vector, local);
+}
+
 // Eq. 2's t_i (metres, local east-north-up): the displacement of the rest point whose argument
 // is theta = argument, for a wave travelling along the unit vector direction with amplitude h =
 // amplitude (metres). Multiply by the weight w_p to filter it.

@@ -16,6 +16,9 @@ uniform vec3 frame_y;         // (FUNCTION 7 and 8)
 uniform vec3 frame_n;
 uniform vec3 dr;              // a direction derivative (FUNCTION 6)
 uniform vec2 radii;           // bottom and top radius of the atmosphere, m (FUNCTION 9, 10)
+uniform vec2 wave_vector;     // rad/m, one wave's k (FUNCTION 11)
+uniform float wave_phase;     // rad, its wrapped phase (FUNCTION 11)
+uniform vec2 step;            // m, an offset between two nearby points (FUNCTION 11)
 layout(location = 0) out vec4 result;
 
 void main() {
@@ -75,5 +78,14 @@ void main() {
   result = vec4(max(-r * mu + SafeSqrt(SphereDiscriminant(r, mu, radii.y)), 0.0),
                 max(-r * mu - SafeSqrt(SphereDiscriminant(r, mu, radii.x)), 0.0), 0.0, 0.0);
 #endif
+#elif FUNCTION == 11
+  // sin of one wave's argument at origin o = p.xy plus local l = p.zw and at l + step:
+  // TrochoidArgumentFrom's (the reference's lattice) and TrochoidArgument's at o + l in float.
+  const vec2 o = vec2(p.x, p.y);
+  const vec2 l = vec2(p.z, p.w);
+  result = vec4(sin(TrochoidArgumentFrom(wave_vector, wave_phase, o, l)),
+                sin(TrochoidArgumentFrom(wave_vector, wave_phase, o, l + step)),
+                sin(TrochoidArgument(wave_vector, wave_phase, o + l)),
+                sin(TrochoidArgument(wave_vector, wave_phase, o + l + step)));
 #endif
 }
