@@ -268,13 +268,13 @@ vec3 RestCorner(vec2 w, out bool hit) {
 vec2 footprint_origin = vec2(0.0);
 
 // Why the corners are given from the footprint's origin (stop 31). A wave's argument, theta =
-// Phi - k.x (trochoids.glsl, TrochoidArgument), reaches k |x| = 157 rad/m x 25 m = 3,900 rad for the 4 m cases'
-// shortest wave (0.04 m) 25 m ahead, where a float's step is 2.4e-4 rad; the corner's own xy,
-// rounded to float at 25 m, adds 2e-6 m x 157. At 128 cells per wavelength and 8 x 8 subcells a
-// subcell's edge is 3.9e-5 m, 6e-3 rad of that wave, so the slope differences across it, which
-// make its parallelogram, carried a rounding noise of 1.5 % rms and its determinant 3.4 % (1.1 %
-// at 8 m; measured in float against double on the 30-wave 20 m/s sea; 0.16-0.40 % at 16 per
-// wavelength). Near a fold of the slope map, where det is small and the brightest glints are,
+// Phi - k.x (trochoids.glsl, TrochoidArgument), reaches k |x| = 157 rad/m x 25 m = 3,900 rad
+// for the 4 m cases' shortest wave (0.04 m) 25 m ahead, where a float's step is 2.4e-4 rad; the
+// corner's own xy, rounded to float at 25 m, adds 2e-6 m x 157. At 128 cells per wavelength and
+// 8 x 8 subcells a subcell's edge is 3.9e-5 m, 6e-3 rad of that wave, so the slope differences
+// across it, which make its parallelogram, carried a rounding noise of 1.5 % rms and its
+// determinant 3.4 % (1.1 % at 8 m; measured in float against double on the 30-wave 20 m/s sea;
+// 0.16-0.40 % at 16 per wavelength; docs/validation.md, stop 31). Near a fold of the slope map, where det is small and the brightest glints are,
 // that noise is a large part of det, and it grows as the cells shrink: stop 30's H200 saw that
 // reference move rows by 2.2, 3.2 and 5.1 % at 16, 45 and 128 per wavelength. Split as theta =
 // Phi_o - k.(x - o) (TrochoidArgumentFrom), Phi_o the same float for every corner of the
