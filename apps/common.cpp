@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
@@ -116,23 +115,18 @@ std::string nonfinite_report(const Image& image, const Renderer& renderer) {
   report += "; the reference's samples (" + per_pixel + " per pixel): " +
             std::to_string(stats.reference_nonfinite_samples) + " not finite, in " +
             std::to_string(stats.reference_nonfinite_pixels) + " pixels";
-  if (stats.reference_first_nonfinite_x >= 0)
-    report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " of " +
-              per_pixel + " at x " + std::to_string(stats.reference_first_nonfinite_x) + ", y " +
-              std::to_string(stats.reference_first_nonfinite_y);
-  // The scattered sun's sums at the image's first pixel that is not finite.
+  if (stats.reference_first_nonfinite_x < 0) return report;
+  // The first pixel with a sample that is not finite (read top-down, as the image's pixels): the
+  // first whose mean is not, since the means of finite samples are finite.
+  const int x = stats.reference_first_nonfinite_x, y = stats.reference_first_nonfinite_y;
+  report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " of " + per_pixel +
+            " at x " + std::to_string(x) + ", y " + std::to_string(y);
   const Image sums = renderer.reference_sun_sums();
-  for (std::size_t p = 0; 4 * p + 3 < image.rgba.size(); ++p) {
-    const float* v = &image.rgba[4 * p];
-    if (std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]))
-      continue;
-    if (sums.rgba.size() == image.rgba.size()) {
-      const float* s = &sums.rgba[4 * p];
-      report += "; the sun's sums there (sum omega sun, sum omega, unresolved, hidden; sr): " +
-                format_number(s[0]) + ", " + format_number(s[1]) + ", " + format_number(s[2]) +
-                ", " + format_number(s[3]);
-    }
-    break;
+  if (x < sums.width && y < sums.height) {
+    const float* s = sums.pixel(x, y);
+    report += "; the sun's sums there (sum omega sun, sum omega, unresolved, hidden; sr): " +
+              format_number(s[0]) + ", " + format_number(s[1]) + ", " + format_number(s[2]) +
+              ", " + format_number(s[3]);
   }
   return report;
 }
