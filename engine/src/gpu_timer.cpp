@@ -27,47 +27,61 @@ TimingSource GpuTimer::source_for_renderer(const std::string& gl_renderer) {
 
 void GpuTimer::mark() {
   if (source_ == TimingSource::FinishWallClock) glFinish();
-  wall_.push_back(std::chrono::steady_clock::now());
-  queries_.push_back(make_query(GL_TIMESTAMP));
-  glQueryCounter(queries_.back().get(), GL_TIMESTAMP);
+  current_.wall.push_back(std::chrono::steady_clock::now());
+  current_.queries.push_back(make_query(GL_TIMESTAMP));
+  glQueryCounter(current_.queries.back().get(), GL_TIMESTAMP);
 }
 
 void GpuTimer::begin_frame() {
-  queries_.clear();
-  wall_.clear();
-  names_.clear();
+  current_ = Marks{};
   mark();
 }
 
 void GpuTimer::end_pass(const std::string& name) {
   mark();
-  names_.push_back(name);
+  current_.names.push_back(name);
 }
 
-std::vector<PassTime> GpuTimer::resolve(PassTime& frame) {
-  std::vector<GLuint64> stamps(queries_.size(), 0);
-  for (std::size_t i = 0; i < queries_.size(); ++i)
-    glGetQueryObjectui64v(queries_[i].get(), GL_QUERY_RESULT, &stamps[i]);  // waits
-  const double host_ms =
-      wall_.empty() ? 0.0
-                    : std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() -
-                                                                wall_.front())
-                          .count();
+std::vector<PassTime> GpuTimer::resolve(PassTime& frame) { return resolve(current_, frame); }
+
+void GpuTimer::defer_frame() {
+  deferred_.push_back(std::move(current_));
+  current_ = Marks{};
+}
+
+std::vector<GpuTimer::FrameTimes> GpuTimer::resolve_deferred() {
+  std::vector<FrameTimes> frames(deferred_.size());
+  for (std::size_t i = 0; i < deferred_.size(); ++i)
+    frames[i].passes = resolve(deferred_[i], frames[i].frame);
+  deferred_.clear();
+  return frames;
+}
+
+std::vector<PassTime> GpuTimer::resolve(const Marks& marks, PassTime& frame) {
+  const auto& queries = marks.queries;
+  const auto& wall = marks.wall;
+  std::vector<GLuint64> stamps(queries.size(), 0);
+  for (std::size_t i = 0; i < queries.size(); ++i)
+    glGetQueryObjectui64v(queries[i].get(), GL_QUERY_RESULT, &stamps[i]);  // waits
+  const double host_ms = wall.empty() ? 0.0
+                                      : std::chrono::duration<double, std::milli>(
+                                            std::chrono::steady_clock::now() - wall.front())
+                                            .count();
   auto query_ms = [&](std::size_t from, std::size_t to) {
     return timestamp_span_ms(stamps[from], stamps[to], host_ms);
   };
   auto wall_ms = [&](std::size_t from, std::size_t to) {
     if (source_ != TimingSource::FinishWallClock) return 0.0;  // unsynchronised: meaningless
-    return std::chrono::duration<double, std::milli>(wall_[to] - wall_[from]).count();
+    return std::chrono::duration<double, std::milli>(wall[to] - wall[from]).count();
   };
   std::vector<PassTime> passes;
   for (std::size_t i = 1; i < stamps.size(); ++i)
-    passes.push_back({names_[i - 1], query_ms(i - 1, i).value_or(0.0), wall_ms(i - 1, i)});
+    passes.push_back({marks.names[i - 1], query_ms(i - 1, i).value_or(0.0), wall_ms(i - 1, i)});
   frame = {"frame", 0.0, 0.0};
   if (stamps.size() > 1) {
     const std::optional<double> span = query_ms(0, stamps.size() - 1);
     if (!span && source_ == TimingSource::TimestampQuery) ++fallback_frames_;
-    frame = {"frame", span.value_or(host_ms), wall_ms(0, wall_.size() - 1)};
+    frame = {"frame", span.value_or(host_ms), wall_ms(0, wall.size() - 1)};
   }
   return passes;
 }

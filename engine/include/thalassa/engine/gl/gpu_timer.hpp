@@ -61,12 +61,31 @@ class GpuTimer {
   // Frames resolved so far whose timestamps were unusable (TimestampQuery mode).
   int fallback_frames() const { return fallback_frames_; }
 
+  // Frames in flight: defer_frame() keeps the frame since begin_frame() with its queries unread,
+  // so that the next frame can be queued without waiting for this one's results (the
+  // reference's thousands of samples a frame); resolve_deferred() waits for them all and gives
+  // each frame's times as resolve() would, oldest first. A deferred frame's host bound runs from
+  // its first mark to the time its results were read back, which is later than resolve()'s and so
+  // still an upper bound of its spans.
+  struct FrameTimes {
+    PassTime frame;
+    std::vector<PassTime> passes;
+  };
+  void defer_frame();
+  std::size_t deferred_frames() const { return deferred_.size(); }
+  std::vector<FrameTimes> resolve_deferred();
+
  private:
+  struct Marks {
+    std::vector<Query> queries;  // one per mark: frame start, then one per pass
+    std::vector<std::chrono::steady_clock::time_point> wall;
+    std::vector<std::string> names;
+  };
   void mark();
+  std::vector<PassTime> resolve(const Marks& marks, PassTime& frame);
   TimingSource source_;
-  std::vector<Query> queries_;  // one per mark: frame start, then one per pass
-  std::vector<std::chrono::steady_clock::time_point> wall_;
-  std::vector<std::string> names_;
+  Marks current_;
+  std::vector<Marks> deferred_;
   int fallback_frames_ = 0;
 };
 
