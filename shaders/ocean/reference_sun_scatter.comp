@@ -32,8 +32,10 @@
 // seen through the sun's disc).
 //
 // The scatter. Each cell adds (solid angle x its sun) to the pixel in which its glint's displaced
-// point is seen (the point of its bilinear patch whose slope is the mirror slope,
-// ReferenceGlintCoordinates), and its solid angle to the pixel of its displaced centre. A pixel's
+// point is seen (the centroid over its bilinear patch of the weight with which each point
+// reflects the sun's disc, ReferenceGlintCentroid: the point whose slope is the mirror slope
+// where the cell is wider than the glint, its centre where it is much narrower), and its solid
+// angle to the pixel of its displaced centre. A pixel's
 // sun is then sum(omega sun) / sum(omega): the solid-angle weighted mean of the sun over the sea
 // it sees, a box filter over the pixel. The lighting pass reads it (ocean_lighting.frag,
 // REFERENCE_SUN) and applies the sun's transmitted irradiance at each sample.
@@ -337,7 +339,8 @@ Corner ReferenceCorner(vec2 local) {
 // What one cell of corners c00, c10 (along u), c01 (along v), c11 reflects of the sun toward
 // the eye at `eye_from` (a point of the cell, m, nadir frame): the sun per unit solid angle
 // (OceanCellReflectedSun, in the tangent frame of the cell's mean facet normal), the displaced
-// point of its glint (where its bilinear patch has the mirror slope: ReferenceGlintCoordinates),
+// point its glint's light comes from (the centroid of the sun's weight over its bilinear patch:
+// ReferenceGlintCentroid),
 // and for the refinement test the mirror slope and the box of the corners' slopes in that frame,
 // grown by a quarter of the patch's twist (z00 - z10 - z01 + z11), which then holds the
 // parallelogram OceanCellReflectedSun integrates over (its vertices are the corners' slopes
@@ -370,8 +373,9 @@ CellGlint ReferenceCellGlint(Corner c00, Corner c10, Corner c01, Corner c11, vec
   // The mirror slope: that of the half vector, (-h_x, -h_y) / h_z.
   const vec3 h = normalize(v_t + l_t);
   g.mirror = -vec2(h.x, h.y) / max(h.z, 1e-6);
-  g.point = ReferenceBilinear(c00.position, c10.position, c01.position, c11.position,
-                              ReferenceGlintCoordinates(c, d_u, d_v, g.mirror));
+  g.point = ReferenceBilinear(
+      c00.position, c10.position, c01.position, c11.position,
+      ReferenceGlintCentroid(c, d_u, d_v, g.mirror, sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE)));
   const vec2 twist = 0.25 * abs(z00 - z10 - z01 + z11);
   g.low = min(min(z00, z10), min(z01, z11)) - twist;
   g.high = max(max(z00, z10), max(z01, z11)) + twist;

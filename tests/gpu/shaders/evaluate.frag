@@ -8,12 +8,13 @@
 #include "ocean/ross_brdf.glsl"
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/visible_area_weight.glsl"
+#include "ocean/reference_cell.glsl"
 #include "ocean/trochoids.glsl"
 
 layout(binding = 0) uniform sampler2D inputs;
 uniform vec3 sun_dir;         // unit, east-north-up
 uniform vec2 slope_variance;  // (sigma_x^2, sigma_y^2), tangent frame
-// FUNCTION 11: a cell's slope-space edges d_u (xy) and d_v (zw), tangent frame. FUNCTION 12: a
+// FUNCTION 11 and 13: a cell's slope-space edges d_u (xy) and d_v (zw), tangent frame. FUNCTION 12: a
 // rasterised triangle's area vector per pixel (xyz, m^2) and the sea at rest's area per pixel
 // (w, m^2, vertical).
 uniform vec4 cell_edges;
@@ -65,6 +66,14 @@ void main() {
                                       sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE)),
                 OceanCellReflectedSun(up_v, sun_dir, vec2(v.x, v.y) * 0.05, d_u, d_v, 0.02), 0.0,
                 1.0);
+#elif FUNCTION == 13
+  // Where the reference's cell puts its glint (ocean/reference_cell.glsl): the centroid (u, v) of
+  // the cell of slope-space edges cell_edges centred on 0 for the mirror slope v.xy / 20, and the
+  // mean of the Gaussian of mean 12 v.x and standard deviation 10^(3 v.y) truncated to
+  // [-1/2, 1/2].
+  result = vec4(ReferenceGlintCentroid(vec2(0.0), cell_edges.xy, cell_edges.zw,
+                                       vec2(v.x, v.y) * 0.05, sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE)),
+                ReferenceTruncatedGaussianMean(12.0 * v.x, pow(10.0, 3.0 * v.y)), 1.0);
 #elif FUNCTION == 12
   // The reference's sample weight (ocean/visible_area_weight.glsl) of the facet of slopes
   // v.xy / 2 seen toward up_v, on the triangle of cell_edges.xyz and on the sea at rest itself.
