@@ -48,7 +48,9 @@ ReferenceAccumulator::ReferenceAccumulator(int width, int height, gl::ShaderLibr
     : width_(width),
       height_(height),
       buffer_(gl::make_buffer()),
-      program_(shaders.program({.compute = "planet/reference_accumulate.comp"})) {
+      program_(shaders.program({.compute = "planet/reference_accumulate.comp"})),
+      size_location_(glGetUniformLocation(program_, "image_size")),
+      image_location_(glGetUniformLocation(program_, "sample_image")) {
   const std::size_t bytes = std::size_t(width) * std::size_t(height) * sizeof(ReferencePixelSums);
   if (width < 1 || height < 1 || bytes > std::size_t(std::numeric_limits<GLsizeiptr>::max()))
     throw gl::GlError("reference sums: " + std::to_string(width) + "x" + std::to_string(height) +
@@ -65,9 +67,10 @@ void ReferenceAccumulator::clear() {
 }
 
 void ReferenceAccumulator::add(GLuint texture) {
+  // Set at each pass: another accumulator of the same shader library shares the program.
   glUseProgram(program_);
-  glProgramUniform2i(program_, glGetUniformLocation(program_, "image_size"), width_, height_);
-  glProgramUniform1i(program_, glGetUniformLocation(program_, "sample_image"), GLint(kSampleUnit));
+  glProgramUniform2i(program_, size_location_, width_, height_);
+  glProgramUniform1i(program_, image_location_, GLint(kSampleUnit));
   glBindTextureUnit(kSampleUnit, texture);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kSumsBinding, buffer_.get());
   // The previous sample's sums written before this pass reads them.

@@ -73,6 +73,7 @@ class ReferenceAccumulator {
   int width_, height_;
   gl::Buffer buffer_;
   GLuint program_;  // the shader library's
+  GLint size_location_, image_location_;  // its uniforms image_size and sample_image
 };
 
 }  // namespace thalassa

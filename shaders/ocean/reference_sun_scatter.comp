@@ -35,10 +35,10 @@
 // point is seen (the centroid over its bilinear patch of the weight with which each point
 // reflects the sun's disc, ReferenceGlintCentroid: the point whose slope is the mirror slope
 // where the cell is wider than the glint, its centre where it is much narrower), and its solid
-// angle to the pixel of its displaced centre. A pixel's
-// sun is then sum(omega sun) / sum(omega): the solid-angle weighted mean of the sun over the sea
-// it sees, a box filter over the pixel. The lighting pass reads it (ocean_lighting.frag,
-// REFERENCE_SUN) and applies the sun's transmitted irradiance at each sample.
+// angle to the pixel of its displaced centre. A pixel's sun is then sum(omega sun) / sum(omega):
+// the solid-angle weighted mean of the sun over the sea it sees, a box filter over the pixel.
+// The lighting pass reads it (ocean_lighting.frag, REFERENCE_SUN) and applies the sun's
+// transmitted irradiance at each sample.
 //
 // Visibility. A cell facing away from the eye is hidden (omega = 0). Within a cell, Smith's
 // masking by its own slopes is in OceanCellReflectedSun. Between cells, the reference's grid (a
@@ -340,11 +340,10 @@ Corner ReferenceCorner(vec2 local) {
 // the eye at `eye_from` (a point of the cell, m, nadir frame): the sun per unit solid angle
 // (OceanCellReflectedSun, in the tangent frame of the cell's mean facet normal), the displaced
 // point its glint's light comes from (the centroid of the sun's weight over its bilinear patch:
-// ReferenceGlintCentroid),
-// and for the refinement test the mirror slope and the box of the corners' slopes in that frame,
-// grown by a quarter of the patch's twist (z00 - z10 - z01 + z11), which then holds the
-// parallelogram OceanCellReflectedSun integrates over (its vertices are the corners' slopes
-// moved by +-twist / 4).
+// ReferenceGlintCentroid), and for the refinement test the mirror slope and the box of the
+// corners' slopes in that frame, grown by a quarter of the patch's twist (z00 - z10 - z01 + z11),
+// which then holds the parallelogram OceanCellReflectedSun integrates over (its vertices are the
+// corners' slopes moved by +-twist / 4).
 struct CellGlint {
   float sun;
   vec3 point;
