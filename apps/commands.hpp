@@ -77,6 +77,9 @@ struct ValidateArgs {
   // --reference-sun-max-cells-per-wavelength: overrides the suite's
   // reference.sun_max_cells_per_wavelength; 0: the suite's.
   double reference_sun_max_cells = 0.0;
+  // --reference-sun-cells: overrides the suite's reference.sun_normal_samples with its square;
+  // 0: the suite's.
+  int reference_sun_cells = 0;
   // --resume: keep the cases of the report already in `dir` that were run with the same inputs.
   bool resume = false;
 };

@@ -120,8 +120,8 @@ double scatter_iterations(int waves, int feature, int refine, int cells) {
 constexpr std::uint64_t kScatterBatch = 65535ull * 64ull;
 constexpr int kScatterMaxMargin = 256;
 // Its convergence measure's rows: not below this fraction of the brightest row's total (as the
-// renderer's kNegligibleRow), and resolved by the coarser lattice to at least this fraction of
-// their sea (a row past the cap changes with the cap, not with the lattice).
+// renderer's kNegligibleRow), and resolved by both lattices to at least this fraction of their
+// sea (a row past the cap changes with the cap, not with the lattice).
 constexpr double kScatterNegligibleRow = 1e-3;
 constexpr double kScatterResolvedRow = 0.99;
 // Nor below this mean sun factor per pixel (sr^-1; the lighting multiplies it by the sun's
@@ -744,14 +744,17 @@ class OceanNode final : public gl::Node {
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     glBindTextureUnit(kGridDepthUnit, context.target.depth_texture());
     // The lattice doubles its cells (spacing / sqrt 2) until no row moves by the tolerance
-    // against the lattice before it, or the most cells per wavelength, or kScatterMaxCells per
-    // pixel side, is reached. The cap grows with the cells (times sqrt 2) so that every lattice
-    // resolves the same footprints, hence the same rows.
+    // against the lattice before it, or the most cells per wavelength is reached. The cap grows
+    // with the cells (times sqrt 2), so that every lattice resolves the same footprints, hence
+    // the same rows, up to the most cells per pixel side; from there it is held, and each
+    // doubling gives up the footprints its finer cells no longer fit in the cap (measure_lattice
+    // compares the rows both lattices resolve).
     double cells_per_wavelength = first_cells_per_wavelength;
     const double most_cells_per_wavelength =
         std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength,
                    kReferenceMaxCellsPerWavelength);
     int cap = first_cap;
+    const int most_cap = std::clamp(options_.reference_max_sun_cells, first_cap, kScatterMaxCells);
     // The finer lattice's own time (ms, to its end on the GPU), kept with it in the cache for a
     // render that draws it from there: the time its image cost.
     double finer_ms =
@@ -771,12 +774,12 @@ class OceanNode final : public gl::Node {
       // 64.00000000000001, past the 64 that ReferenceSampling allows when validate redrew that
       // lattice for its later terms (the first GPU run, stop 26). pow(2, whole) is exact.
       const double growth = std::pow(2.0, 0.5 * (lattice_doublings_ + 1));
-      const int finer_cap = static_cast<int>(std::lround(first_cap * growth));
+      const int finer_cap =
+          static_cast<int>(std::min<long>(std::lround(first_cap * growth), most_cap));
       // (1 + 1e-9: a most given as a printed 16 sqrt 2, 22.63, is reached.)
       const double finer_unclamped = first_cells_per_wavelength * growth;
       if (!measure || lattice_row_change_ < options_.reference_lattice_tolerance ||
-          finer_unclamped > most_cells_per_wavelength * (1.0 + 1e-9) ||
-          finer_cap > kScatterMaxCells)
+          finer_unclamped > most_cells_per_wavelength * (1.0 + 1e-9))
         break;
       const double finer = std::min(finer_unclamped, most_cells_per_wavelength);
       // The finer lattice becomes the coarser one it is measured against.
@@ -827,8 +830,11 @@ class OceanNode final : public gl::Node {
         std::max(kScatterNegligibleRow * brightest, kScatterBlackFactor * inputs.width);
     const std::size_t rows = fine.total.size();
     lattice_row_changes_.assign(rows, std::numeric_limits<double>::quiet_NaN());
+    // Rows both lattices resolve: the same while the cap grows with the cells; once it is held,
+    // the finer lattice gives up the farthest of the coarser's rows.
     for (std::size_t y = 0; y < rows; ++y)  // window rows, from the bottom
-      if (coarse.resolved[y] >= kScatterResolvedRow && fine.total[y] > floor) {
+      if (coarse.resolved[y] >= kScatterResolvedRow && fine.resolved[y] >= kScatterResolvedRow &&
+          fine.total[y] > floor) {
         const double change = std::abs(fine.total[y] - coarse.total[y]) / fine.total[y];
         lattice_row_changes_[rows - 1 - y] = change;  // image rows, from the top
         lattice_row_change_ = std::max(lattice_row_change_, change);

@@ -201,6 +201,7 @@ struct Renderer::Impl {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
             r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
+            r.sun_max_cells >= r.sun_cells && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
@@ -209,6 +210,7 @@ struct Renderer::Impl {
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
             "sun_cells in [1, " +
+            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [sun_cells, " +
             std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "] and sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
@@ -231,6 +233,7 @@ struct Renderer::Impl {
            .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
            .reference_measure_lattice = options.reference.measure_lattice,
            .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
+           .reference_max_sun_cells = options.reference.sun_max_cells,
            .reference_lattice_tolerance = options.reference.row_tolerance,
            .reference_float_atomics = options.reference.sun_float_atomics,
            .reference_sun_cache = options.reference.sun_cache,

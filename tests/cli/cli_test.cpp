@@ -394,10 +394,11 @@ TEST_F(Cli, ValidateWritesTheReport) {
   // --reference-samples replaces the suite's reference.pixel_samples (4); the sky alone keeps
   // reference.pixel_samples_without_sun (8).
   // --reference-sun-max-cells-per-wavelength replaces the suite's most cells (here the start,
-  // 16: no doubling, and nothing to pay for it).
-  const Result r = run(
-      "validate suite.json -o report --reference-samples 2 "
-      "--reference-sun-max-cells-per-wavelength 16");
+  // 16: no doubling, and nothing to pay for it); --reference-sun-cells the suite's
+  // sun_normal_samples (1024) with its square.
+  const Result r =
+      run("validate suite.json -o report --reference-samples 2 "
+          "--reference-sun-max-cells-per-wavelength 16 --reference-sun-cells 16");
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* file : {"index.html", "results.json", "metrics.csv", "rows.csv", "horizon.csv",
                            "cases.csv", "images/near_reference_sun.exr", "images/near_full_all.png",
@@ -409,6 +410,7 @@ TEST_F(Cli, ValidateWritesTheReport) {
   EXPECT_EQ(results["cases"][1]["exit_status"], 2);
   EXPECT_EQ(results["reference"]["pixel_samples"], 2);
   EXPECT_EQ(results["reference"]["sun_max_cells_per_wavelength"], 16.0);
+  EXPECT_EQ(results["reference"]["sun_normal_samples"], 256);
   EXPECT_EQ(results["cases"][0]["methods"][0]["lattice_cells_per_wavelength"]["sun"], 16.0);
   const auto& reference_terms = results["cases"][0]["methods"][0]["terms"];
   EXPECT_EQ(reference_terms[0]["samples"], 2);                             // sun
@@ -515,7 +517,8 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   // Past ocean/method.hpp's limits too.
   for (const std::string& past :
        std::vector<std::string>{"--reference-samples 0", "--reference-samples 16385",
-                                "--reference-sun-max-cells-per-wavelength 129"}) {
+                                "--reference-sun-max-cells-per-wavelength 129",
+                                "--reference-sun-cells 0", "--reference-sun-cells 2049"}) {
     const Result range = run("validate -o out " + past);
     EXPECT_EQ(range.status, 2) << range.err;
     EXPECT_NE(range.err.find(past.substr(0, past.find(' '))), std::string::npos) << range.err;

@@ -543,6 +543,54 @@ TEST(OceanMethods, ScatteredSunDoublesItsLatticeUntilItConverges) {
   EXPECT_LT(worst, 1e-4);
 }
 
+// Past ReferenceSampling::sun_max_cells the lattice's cells per pixel side are held while its
+// cells per wavelength go on doubling: the footprints its finer cells no longer fit in the held
+// cap drop out, so it compares the rows both lattices of the last doubling resolve, which are
+// among those the lattice compares when its cap grows with its cells. (How a suite's first
+// lattice of 2048 cells per side keeps the far rows until a doubling must give them up.)
+TEST(OceanMethods, ScatteredSunHoldsItsCapWhileItsCellsDouble) {
+  auto context = test::make_test_context();
+  const Scene scene = small_sun_scene();
+  const auto render = [&](int most_cells, double first = 2.0, double most = 4.0) {
+    RendererOptions options = reference_sun_options(first, 2, 32);
+    options.reference.sun_max_cells_per_wavelength = most;
+    options.reference.sun_max_cells = most_cells;
+    options.reference.row_tolerance = 1e-9;  // every doubling allowed is taken
+    Renderer renderer(*context, scene, options);
+    renderer.render();
+    return renderer.stats();
+  };
+  const RenderStats growing = render(ocean::kReferenceMaxSunCells);
+  const RenderStats held = render(32);
+  std::printf("cap growing: %d cells a side, %d rows compared; held: %d cells, %d rows\n",
+              growing.sun_lattice_cells, growing.sun_lattice_rows, held.sun_lattice_cells,
+              held.sun_lattice_rows);
+  EXPECT_EQ(growing.sun_lattice_doublings, 2);
+  EXPECT_EQ(growing.sun_lattice_cells, 64);
+  EXPECT_EQ(held.sun_lattice_doublings, 2);  // the held cap does not stop the doublings
+  EXPECT_EQ(held.sun_lattice_cells, 32);
+  EXPECT_EQ(held.sun_lattice_cells_per_wavelength, 4.0);
+  ASSERT_GE(held.sun_lattice_rows, 1);
+  EXPECT_LT(held.sun_lattice_rows, growing.sun_lattice_rows);
+  ASSERT_EQ(held.sun_lattice_row_changes.size(), growing.sun_lattice_row_changes.size());
+  for (std::size_t y = 0; y < held.sun_lattice_row_changes.size(); ++y)
+    if (!std::isnan(held.sun_lattice_row_changes[y]))
+      EXPECT_FALSE(std::isnan(growing.sun_lattice_row_changes[y])) << "row " << y;
+  // They are the rows the held lattice resolves, as when it is drawn directly (against its half,
+  // which resolves the same footprints): not those only the lattice before it resolved.
+  const RenderStats direct = render(32, 4.0, 4.0);
+  EXPECT_EQ(direct.sun_lattice_doublings, 0);
+  EXPECT_EQ(held.sun_lattice_rows, direct.sun_lattice_rows);
+  for (std::size_t y = 0; y < held.sun_lattice_row_changes.size(); ++y)
+    EXPECT_EQ(std::isnan(held.sun_lattice_row_changes[y]),
+              std::isnan(direct.sun_lattice_row_changes[y]))
+        << "row " << y;
+  // An invalid cap: below the first lattice's cells.
+  RendererOptions bad = reference_sun_options(2.0, 2, 32);
+  bad.reference.sun_max_cells = 16;
+  EXPECT_THROW(Renderer(*context, scene, bad), std::invalid_argument);
+}
+
 // A reference rendered term by term keeps its sun's lattice (ReferenceSampling::sun_cache): a
 // render of every term that asks for the lattice the sun term converged to, of the same view
 // and time, draws the kept sums instead of scattering again (validate's term `all`, frame 0), and

@@ -307,6 +307,11 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
                                    R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(doubling, doubling.cases[0], env),
             case_fingerprint(not_doubling, not_doubling.cases[0], env));
+  // The sun's first lattice at the scatter's most cells per pixel side (the far rows' setting).
+  const Suite far = suite(R"({"pixel_samples": 8, "sun_normal_samples": 4194304})",
+                          R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
+  EXPECT_EQ(far.reference.sun_cells(), 2048);
+  EXPECT_NE(case_fingerprint(far, far.cases[0], env), a);
   const Suite other_method = suite(R"({"pixel_samples": 8})", R"({"ocean.waves": 120})",
                                    R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(other_method, other_method.cases[0], env), a);
@@ -499,6 +504,10 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
       {R"({"suite": "s", "reference": {"sun_refine": 9}, "cases": [)" + ok_case + "]}",
        "t.json: reference.sun_refine: expected an integer in [1, 8], got 9"},
+      // (2048^2: the scatter's most cells per pixel side, squared.)
+      {R"({"suite": "s", "reference": {"sun_normal_samples": 4194305}, "cases": [)" + ok_case +
+           "]}",
+       "t.json: reference.sun_normal_samples: expected an integer in [1, 4194304], got 4194305"},
       {R"({"suite": "s", "reference": {"sun_cells_per_wavelength": 16, "sun_max_cells_per_wavelength": 8}, "cases": [)" +
            ok_case + "]}",
        "t.json: reference.sun_max_cells_per_wavelength: expected at least "

@@ -386,7 +386,8 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
                      1, ocean::kReferenceMaxPixelSamples);
     if (r.contains("sun_normal_samples"))
       suite.reference.sun_normal_samples =
-          integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1, 65536);
+          integer_at(r["sun_normal_samples"], source, "reference.sun_normal_samples", 1,
+                     ocean::kReferenceMaxSunCells * ocean::kReferenceMaxSunCells);
     if (r.contains("sun_cells_per_wavelength"))
       suite.reference.sun_cells_per_wavelength =
           number_at(r["sun_cells_per_wavelength"], source, "reference.sun_cells_per_wavelength", 1,

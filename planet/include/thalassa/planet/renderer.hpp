@@ -61,7 +61,7 @@ struct RenderStats {
   // largest relative change of an image row's total sun between its lattice and one with half
   // the cells (the sun's convergence test: its "normal samples",
   // shaders/ocean/reference_sun_scatter.comp), measured on the sun_lattice_rows rows whose sea
-  // the coarser lattice resolves; the wall-clock ms of the two lattices (counted once in the
+  // both lattices resolve; the wall-clock ms of the two lattices (counted once in the
   // reference's frame time); the pixels the lattice reached beyond each image edge; the
   // fraction of the front-facing sea's solid angle that the grid's crests hid; and the subcells
   // per side its cells near the mirror slope were cut into (ReferenceSampling::sun_refine, lower
@@ -181,11 +181,18 @@ struct ReferenceSampling {
   // Scattered and measured: while its lattice moves a compared row by row_tolerance or more
   // against the lattice of half its cells, the sun doubles its cells (sun_cells_per_wavelength
   // and sun_cells times sqrt 2: the same footprints resolved, so the same rows compared) and
-  // measures again, up to this many cells per wavelength and 2048 per pixel side: the samples'
-  // doubling, for the sun's normal samples (issue 6, point 1). Each doubling costs about twice
-  // the lattice before it. 0 (the default): none, the lattice as sun_cells_per_wavelength says;
-  // else in [sun_cells_per_wavelength, 128] (ocean/method.hpp's limits).
+  // measures again, up to this many cells per wavelength: the samples' doubling, for the sun's
+  // normal samples (issue 6, point 1). Each doubling costs about twice the lattice before it. 0
+  // (the default): none, the lattice as sun_cells_per_wavelength says; else in
+  // [sun_cells_per_wavelength, 128] (ocean/method.hpp's limits).
   double sun_max_cells_per_wavelength = 0.0;
+  // Scattered, doubling: the most cells per pixel side, in [sun_cells, 2048]. Past it the cells
+  // per pixel side are held while the cells per wavelength go on doubling; the footprints the
+  // finer lattice then no longer resolves (the farthest compared) drop out of the comparison,
+  // which takes the rows both lattices of a doubling resolve. With sun_cells at 2048 the far
+  // rows are resolved at the first lattice and the doublings give them up only if they must
+  // (docs/validation.md, "The sun's far rows").
+  int sun_max_cells = ocean::kReferenceMaxSunCells;
   // Scattered: add the cells' shares with the float atomics of GL_NV_shader_atomic_float where
   // the driver has them (NVIDIA's, Mesa's llvmpipe), else by compare-and-swap on their bits. The
   // same sums to float rounding in either order; under contention, one atomic against a retry

@@ -108,10 +108,13 @@ struct ReferenceSettings {
   // sun's reference per sample and converge more slowly per sample than it costs to take more;
   // 0: pixel_samples.
   int pixel_samples_without_sun = 0;
-  // Normal samples per pixel for the sun's disc, [1, 65536]: the reference's sun integrates over
-  // up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
+  // Normal samples per pixel for the sun's disc, [1, 2048^2]: the reference's sun integrates
+  // over up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
   // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun_scatter.comp), each at most the
-  // shortest wavelength / sun_cells_per_wavelength ([1, 128]) wide.
+  // shortest wavelength / sun_cells_per_wavelength ([1, 128]) wide. The footprints that need
+  // more are not compared: 256 (65536, the default) resolves the nearer 18-25 of the default
+  // suite's 47-51 sea rows, 2048 reaches row 30 or so (docs/validation.md, "The sun's far
+  // rows").
   int sun_normal_samples = 65536;
   double sun_cells_per_wavelength = 16.0;
   // How the reference integrates the sun over its cells: "scattered" (once per image from a
