@@ -28,7 +28,7 @@ struct RenderArgs {
   std::string method = "full";              // the ocean's shading method (ocean/method.hpp)
   int samples = 1024;                       // the reference's most samples per pixel
   bool fixed_samples = false;  // the reference: exactly `samples`, no stop at convergence
-  int sun_cells = 256;                      // the reference's sun: most cells per pixel side
+  int sun_cells = 256;         // the reference's sun: most cells per pixel, squared (scattered)
   double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
   int sun_refine = 4;                       // the reference's sun: subcells per side near glints
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)

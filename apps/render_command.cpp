@@ -39,6 +39,8 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
     json["sun_lattice_cells_per_wavelength"] = stats.sun_lattice_cells_per_wavelength;
     json["sun_lattice_cells"] = stats.sun_lattice_cells;
+    if (!stats.sun_lattice_row_cells.empty())
+      json["sun_lattice_row_cells"] = stats.sun_lattice_row_cells;
     json["sun_lattice_doublings"] = stats.sun_lattice_doublings;
     json["sun_lattice_float_atomics"] = stats.sun_lattice_float_atomics;
   }
@@ -111,9 +113,10 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
       ->capture_default_str();
   render
       ->add_option("--sun-cells", args.sun_cells,
-                   "The reference's sun: the most cells per pixel side (gathered: at most 64 per "
-                   "side of each of its s x s strata); rows that need more are reported "
-                   "unresolved in --stats resolved_rows")
+                   "The reference's sun: scattered, the square root of the most cells per "
+                   "pixel's footprint, in whatever shape it needs (gathered: the most per side, "
+                   "at most 64 per side of each of its s x s strata); rows that need more are "
+                   "reported unresolved in --stats resolved_rows")
       ->check(CLI::Range(1, ocean::kReferenceMaxSunCells))
       ->capture_default_str();
   render
@@ -125,9 +128,9 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
   render
       ->add_option("--sun-max-cells-per-wavelength", args.sun_max_cells_per_wavelength,
                    "The reference's sun, scattered: while its lattice moves an image row's total "
-                   "by 1% or more against half its cells, double its cells (per wavelength and "
-                   "per pixel side, times sqrt 2) up to this many per wavelength (at least "
-                   "--sun-cells-per-wavelength; 0: no doubling); --stats "
+                   "by 1% or more against half its cells, double its cells (per wavelength "
+                   "times sqrt 2, --sun-cells times sqrt 2) up to this many per wavelength (at "
+                   "least --sun-cells-per-wavelength; 0: no doubling); --stats "
                    "sun_lattice_cells_per_wavelength says where it stopped")
       ->check(CLI::Range(0.0, ocean::kReferenceMaxCellsPerWavelength))
       ->capture_default_str();

@@ -464,11 +464,11 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
       ->check(CLI::Range(1.0, ocean::kReferenceMaxCellsPerWavelength));
   validate
       ->add_option("--reference-sun-cells", args.reference_sun_cells,
-                   "The reference's sun: its first lattice's most cells per pixel side, instead "
-                   "of the square root of the suite's reference.sun_normal_samples; the "
-                   "footprints that need more are not compared (256, the default suite's, "
-                   "resolves its nearer rows; 2048 reaches far into the glitter for about ten "
-                   "times the sun's time)")
+                   "The reference's sun: the square root of its first lattice's most cells per "
+                   "pixel's footprint, instead of that of the suite's "
+                   "reference.sun_normal_samples; the footprints that need more are not "
+                   "compared (256, the default suite's, resolves its nearer rows; 2048 reaches "
+                   "far into the glitter)")
       ->check(CLI::Range(1, ocean::kReferenceMaxSunCells));
   validate->add_flag("--resume", args.resume,
                      "Keep the cases of the report already in the output folder that were run "

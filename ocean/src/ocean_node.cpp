@@ -32,7 +32,7 @@ class ScatteredSunCache {
     double planet_radius = 0.0;  // m
     std::uint64_t waves = 0;     // wave_digest
     double cells_per_wavelength = 0.0;
-    int cells = 0;               // per pixel side at most
+    int cells = 0;               // at most its square per pixel's footprint
     int refine = 0;              // subcells per side asked for
     bool float_atomics = false;  // asked for and available
   };
@@ -63,9 +63,9 @@ constexpr int kGridMarginCells = 2;
 constexpr double kReferenceGridCell = 1.0;
 
 // The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds (the
-// gathered sun), and per pixel side of the scattered sun's lattice
-// (shaders/ocean/reference_sun_scatter.comp; ocean/method.hpp): 2048^2 cells per pixel, 64 times
-// the paper's sec. 7.2 count, reached only where a footprint far away needs it.
+// gathered sun), and the square root of the most per pixel's footprint of the scattered sun's
+// lattice (shaders/ocean/reference_sun_scatter.comp; ocean/method.hpp): 2048^2 cells per pixel,
+// 8,192 times the paper's sec. 7.2 count of 512, reached only where a footprint far away needs it.
 constexpr int kReferenceMaxCells = 64;
 constexpr int kScatterMaxCells = kReferenceMaxSunCells;
 // The most subcells per side of a scattered cell that comes near the mirror slope
@@ -137,6 +137,7 @@ constexpr double kScatterBlackFactor = 1e-8;
 constexpr GLuint kReferenceSunBinding = 7;
 // The scattered sun's footprints (reference_sun_scatter.comp, pass 1 to pass 2).
 constexpr GLuint kScatterFootprintBinding = 8;
+constexpr GLuint kScatterFootprintStartBinding = 9;
 constexpr GLuint kGridDepthUnit = 14;
 
 class OceanNode final : public gl::Node {
@@ -357,8 +358,15 @@ class OceanNode final : public gl::Node {
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
-    if (!reference_sun_scatter() || scatter_ms_ < 0.0 || lattice_row_changes_.empty()) return {};
-    return {{"reference_sun.lattice_row_changes", lattice_row_changes_}};
+    if (!reference_sun_scatter() || scatter_ms_ < 0.0) return {};
+    std::vector<std::pair<std::string, std::vector<double>>> rows;
+    if (!lattice_row_changes_.empty())
+      rows.emplace_back("reference_sun.lattice_row_changes", lattice_row_changes_);
+    if (!lattice_row_cells_x_.empty()) {
+      rows.emplace_back("reference_sun.row_cells_x", lattice_row_cells_x_);
+      rows.emplace_back("reference_sun.row_cells_y", lattice_row_cells_y_);
+    }
+    return rows;
   }
 
   // "reference_sun.sums": the scattered sun's per-pixel sums as the lighting pass read them
@@ -632,6 +640,8 @@ class OceanNode final : public gl::Node {
       lattice_row_change_ = 0.0;
       lattice_rows_ = 0;
       lattice_row_changes_.clear();
+      lattice_row_cells_x_.clear();
+      lattice_row_cells_y_.clear();
       scatter_margin_ = kept.margin;
       scatter_refine_ = kept.refine;
       hidden_fraction_ = kept.hidden_fraction;
@@ -723,6 +733,8 @@ class OceanNode final : public gl::Node {
       for (const GLuint program : programs) local_features_->set_uniforms(program);
       local_features_->bind();
     }
+    scatter_width_ = inputs.width;
+    scatter_height_ = inputs.height;
     const std::size_t footprints = std::size_t(inputs.width + 2 * scatter_margin_) *
                                    std::size_t(inputs.height + 2 * scatter_margin_);
     if (!footprint_buffer_ || footprint_count_ != footprints) {
@@ -745,10 +757,10 @@ class OceanNode final : public gl::Node {
     glBindTextureUnit(kGridDepthUnit, context.target.depth_texture());
     // The lattice doubles its cells (spacing / sqrt 2) until no row moves by the tolerance
     // against the lattice before it, or the most cells per wavelength is reached. The cap grows
-    // with the cells (times sqrt 2), so that every lattice resolves the same footprints, hence
-    // the same rows, up to the most cells per pixel side; from there it is held, and each
-    // doubling gives up the footprints its finer cells no longer fit in the cap (measure_lattice
-    // compares the rows both lattices resolve).
+    // with the cells (times sqrt 2; cap^2 cells per footprint, times 2), so that every lattice
+    // resolves the same footprints, hence the same rows, up to the most; from there it is held,
+    // and each doubling gives up the footprints its finer cells no longer fit in the cap
+    // (measure_lattice compares the rows both lattices resolve).
     double cells_per_wavelength = first_cells_per_wavelength;
     const double most_cells_per_wavelength =
         std::clamp(options_.reference_max_cells_per_wavelength, cells_per_wavelength,
@@ -760,6 +772,8 @@ class OceanNode final : public gl::Node {
     double finer_ms =
         run_scatter_timed(programs, reference_sun_buffer_.get(),
                           waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
+    lattice_row_cells_x_ = scatter_row_cells_x_;
+    lattice_row_cells_y_ = scatter_row_cells_y_;
     const bool measure = options_.reference_measure_lattice;
     if (measure)
       run_scatter(programs, coarse_sun_buffer_.get(),
@@ -788,6 +802,8 @@ class OceanNode final : public gl::Node {
       cap = finer_cap;
       finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
                                    waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
+      lattice_row_cells_x_ = scatter_row_cells_x_;
+      lattice_row_cells_y_ = scatter_row_cells_y_;
       ++lattice_doublings_;
     }
     lattice_cells_per_wavelength_ = cells_per_wavelength;
@@ -845,7 +861,7 @@ class OceanNode final : public gl::Node {
   // run_scatter; with `timed`, waited for, and its wall-clock time (ms), else 0 (a lattice no
   // cache keeps needs no time of its own, and the GPU may overlap it with the next).
   double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                           int cap, bool timed) const {
+                           int cap, bool timed) {
     const auto start = std::chrono::steady_clock::now();
     run_scatter(programs, buffer, spacing, cap);
     if (!timed) return 0.0;
@@ -854,10 +870,9 @@ class OceanNode final : public gl::Node {
         .count();
   }
 
-  // One lattice (spacing m, at most cap cells per pixel side) into buffer, cleared first: the
-  // footprints' pass (programs[0]), then the cells' (programs[1]).
-  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                   int cap) const {
+  // One lattice (spacing m, at most cap^2 cells per pixel's footprint) into buffer, cleared
+  // first: the footprints' pass (programs[0]), then the cells' (programs[1]).
+  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing, int cap) {
     const float zero = 0.0f;
     glClearNamedBufferData(buffer, GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReferenceSunBinding, buffer);
@@ -866,7 +881,6 @@ class OceanNode final : public gl::Node {
                          float(spacing));
       glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
     }
-    const std::uint64_t segments = (cap + scatter_segment_ - 1) / scatter_segment_;
     // `invocations` invocations of `program` from 0, in batches (first_invocation each; the
     // shader ignores the last work group's invocations from invocation_end on).
     const auto dispatch = [](GLuint program, std::uint64_t invocations) {
@@ -882,20 +896,69 @@ class OceanNode final : public gl::Node {
     // Footprints' pass: one invocation per footprint.
     glUseProgram(programs[0]);
     dispatch(programs[0], footprint_count_);
-    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
-    // Cells' pass: cap x segments invocations per footprint (at most 2048 x 2048), whole
-    // footprints per batch, so that the shader's 32-bit invocation index counts one batch (the
-    // whole lattice's slots pass 2^32 on the 20 m/s sea at 4 m with 8 x 8 subcells: 6.1e9).
-    const std::uint64_t per_footprint = std::uint64_t(cap) * segments;
-    const std::uint64_t footprints_per_batch =
-        std::max<std::uint64_t>(1, kScatterBatch / per_footprint);
+    // Cells' pass: ky x ceil(kx / segment) invocations per footprint, numbered without gaps
+    // (reference_sun_scatter.comp, pass 2), in batches of whole footprints whose invocations a
+    // 32-bit index counts (the whole lattice's passed 2^32 on the 20 m/s sea at 4 m with 8 x 8
+    // subcells: 6.1e9 slots as they were laid out until stop 33). A footprint's cells are at
+    // most cap^2 <= 2048^2, so one always fits.
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+    std::vector<float> footprints(12 * footprint_count_);
+    glGetNamedBufferSubData(footprint_buffer_.get(), 0,
+                            static_cast<GLsizeiptr>(footprints.size() * sizeof(float)),
+                            footprints.data());
+    // Per image row (top first), the cells along x and y of its footprint with the most.
+    const int columns = scatter_width_ + 2 * scatter_margin_;
+    scatter_row_cells_x_.assign(scatter_height_, 0.0);
+    scatter_row_cells_y_.assign(scatter_height_, 0.0);
+    std::vector<GLuint> starts(footprint_count_);
+    struct Batch {
+      std::uint64_t first = 0, end = 0, invocations = 0;
+    };
+    std::vector<Batch> batches{Batch{}};
+    const std::uint64_t segment = static_cast<std::uint64_t>(scatter_segment_);
+    const std::uint64_t batch_invocations =
+        std::clamp<std::uint64_t>(options_.reference_sun_batch, 1, kReferenceMaxSunBatch);
+    for (std::size_t f = 0; f < footprint_count_; ++f) {
+      const auto kx = static_cast<std::uint64_t>(std::max(footprints[12 * f + 8], 0.0f));
+      const auto ky = static_cast<std::uint64_t>(std::max(footprints[12 * f + 9], 0.0f));
+      const std::uint64_t invocations = ky * ((kx + segment - 1) / segment);
+      const int x = static_cast<int>(f % columns) - scatter_margin_;
+      const int y = static_cast<int>(f / columns) - scatter_margin_;  // window row, from the bottom
+      if (x >= 0 && x < scatter_width_ && y >= 0 && y < scatter_height_) {
+        const int row = scatter_height_ - 1 - y;
+        if (double(kx) * double(ky) > scatter_row_cells_x_[row] * scatter_row_cells_y_[row]) {
+          scatter_row_cells_x_[row] = double(kx);
+          scatter_row_cells_y_[row] = double(ky);
+        }
+      }
+      // A new batch where this footprint would take the batch past its most (a footprint with
+      // more than the most, possible only below kReferenceMaxSunBatch, is a batch alone).
+      if (batches.back().invocations > 0 &&
+          batches.back().invocations + invocations > batch_invocations)
+        batches.push_back(Batch{.first = f, .end = f, .invocations = 0});
+      starts[f] = static_cast<GLuint>(batches.back().invocations);
+      batches.back().invocations += invocations;
+      batches.back().end = f + 1;
+    }
+    if (!footprint_start_buffer_ || footprint_start_count_ != footprint_count_) {
+      footprint_start_buffer_ = gl::make_buffer();
+      glNamedBufferStorage(footprint_start_buffer_.get(),
+                           static_cast<GLsizeiptr>(footprint_count_ * sizeof(GLuint)), nullptr,
+                           GL_DYNAMIC_STORAGE_BIT);
+      footprint_start_count_ = footprint_count_;
+    }
+    glNamedBufferSubData(footprint_start_buffer_.get(), 0,
+                         static_cast<GLsizeiptr>(starts.size() * sizeof(GLuint)), starts.data());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kScatterFootprintStartBinding,
+                     footprint_start_buffer_.get());
     glUseProgram(programs[1]);
     const GLint first_footprint = glGetUniformLocation(programs[1], "first_footprint");
-    for (std::uint64_t footprint = 0; footprint < footprint_count_;
-         footprint += footprints_per_batch) {
-      glProgramUniform1ui(programs[1], first_footprint, static_cast<GLuint>(footprint));
-      dispatch(programs[1],
-               std::min(footprints_per_batch, footprint_count_ - footprint) * per_footprint);
+    const GLint footprint_end = glGetUniformLocation(programs[1], "footprint_end");
+    for (const Batch& batch : batches) {
+      if (batch.invocations == 0) continue;
+      glProgramUniform1ui(programs[1], first_footprint, static_cast<GLuint>(batch.first));
+      glProgramUniform1ui(programs[1], footprint_end, static_cast<GLuint>(batch.end));
+      dispatch(programs[1], batch.invocations);
     }
   }
 
@@ -1014,21 +1077,30 @@ class OceanNode final : public gl::Node {
   gl::FrameInputs scatter_key_;
   bool has_scatter_key_ = false;
   int scatter_margin_ = 0;
+  int scatter_width_ = 0, scatter_height_ = 0;  // the image's pixels, of the lattice run last
   // Subcells per side of the cells near the mirror slope, and cells per invocation, as run
   // (within kShaderLoopBudget).
   int scatter_refine_ = 1;
   int scatter_segment_ = 1;
   gl::Buffer footprint_buffer_;  // 12 floats per footprint, between the scatter's passes
   std::size_t footprint_count_ = 0;
+  // Per footprint, its first invocation of pass 2, counted from its batch's first (run_scatter).
+  gl::Buffer footprint_start_buffer_;
+  std::size_t footprint_start_count_ = 0;
   double scatter_ms_ = -1.0;
   double lattice_row_change_ = 0.0;
   // Per image row (top first, where the scatter's rows are the window's, from the bottom), the
   // relative change measured in it; NaN where none was (a row the coarser lattice leaves
   // unresolved, or below kScatterNegligibleRow of the brightest).
   std::vector<double> lattice_row_changes_;
+  // Per image row (top first), the cells along x and y of the footprint with the most, in the
+  // last lattice run_scatter drew (scatter_) and in the finer lattice (lattice_; empty when the
+  // lattice was kept, ScatteredSunCache).
+  std::vector<double> scatter_row_cells_x_, scatter_row_cells_y_;
+  std::vector<double> lattice_row_cells_x_, lattice_row_cells_y_;
   int lattice_rows_ = 0;  // the rows it was measured on
   // The finer lattice as run (after lattice_doublings_ doublings of the options' lattice): its
-  // cells per shortest wavelength and most cells per pixel side.
+  // cells per shortest wavelength and cap (at most cap^2 cells per pixel's footprint).
   double lattice_cells_per_wavelength_ = 0.0;
   int lattice_cap_ = 0;
   int lattice_doublings_ = 0;

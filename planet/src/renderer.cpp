@@ -91,8 +91,9 @@ int reference_strata(const ReferenceSampling& r) {
 }
 
 // The most cells of the reference's sun per side of what one ocean-node pass integrates: with
-// the scatter, sun_cells per pixel side; gathered, sun_cells per pixel side shared among the s
-// strata of a side, at most 64 (the shader's row buffer).
+// the scatter, sun_cells (sun_cells^2 per pixel's footprint, in whatever shape); gathered,
+// sun_cells per pixel side shared among the s strata of a side, at most 64 (the shader's row
+// buffer).
 int reference_sun_cells(const ReferenceSampling& r) {
   if (r.sun == ReferenceSun::scattered) return r.sun_cells;
   const int strata = reference_strata(r);
@@ -202,6 +203,8 @@ struct Renderer::Impl {
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
             r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_max_cells >= r.sun_cells && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
+            r.sun_batch_invocations >= 1 &&
+            r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch &&
             r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
@@ -213,8 +216,9 @@ struct Renderer::Impl {
             std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [sun_cells, " +
             std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "] and sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
-            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) + "]");
+            "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
+            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
+            "] and sun_batch_invocations in [1, 2^31]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(
@@ -236,6 +240,7 @@ struct Renderer::Impl {
            .reference_max_sun_cells = options.reference.sun_max_cells,
            .reference_lattice_tolerance = options.reference.row_tolerance,
            .reference_float_atomics = options.reference.sun_float_atomics,
+           .reference_sun_batch = options.reference.sun_batch_invocations,
            .reference_sun_cache = options.reference.sun_cache,
            .features = features}));
   }
@@ -595,6 +600,13 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_cells_per_wavelength =
       m.node_measurement("reference_sun.cells_per_wavelength");
   stats.sun_lattice_cells = static_cast<int>(m.node_measurement("reference_sun.cells"));
+  {
+    const std::vector<double> x = m.node_row_measurement("reference_sun.row_cells_x");
+    const std::vector<double> y = m.node_row_measurement("reference_sun.row_cells_y");
+    stats.sun_lattice_row_cells.clear();
+    for (std::size_t row = 0; row < std::min(x.size(), y.size()); ++row)
+      stats.sun_lattice_row_cells.push_back({static_cast<int>(x[row]), static_cast<int>(y[row])});
+  }
   stats.sun_lattice_doublings = static_cast<int>(m.node_measurement("reference_sun.doublings"));
   stats.sun_lattice_float_atomics = m.node_measurement("reference_sun.float_atomics") > 0.0;
   stats.sun_lattice_reused = m.node_measurement("reference_sun.reused") > 0.0;

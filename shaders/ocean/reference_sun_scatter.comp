@@ -22,11 +22,11 @@
 // share their corners, so the footprints tile the sea in view exactly. Each footprint is cut
 // bilinearly into kx x ky cells no wider than `reference_spacing` (a fraction of the shortest
 // wave's length: every wave resolved, its slope nearly linear across a cell), at most
-// reference_max_cells per side (the cap: past it the cells are wider and the pixel is counted as
-// unresolved). On each cell, every wave (w_n = w_p = 1, calm areas and wakes included) gives the
-// four corners' displaced positions and exact normals; the slopes spread over the parallelogram
-// of slope space the corners span, and the sun the cell reflects is eq. 15 with that
-// parallelogram's density convolved with the sun's disc (OceanCellReflectedSun,
+// reference_max_cells^2 in all, in whatever shape (the cap: past it the cells are wider and the
+// pixel is counted as unresolved). On each cell, every wave (w_n = w_p = 1, calm areas and wakes
+// included) gives the four corners' displaced positions and exact normals; the slopes spread over
+// the parallelogram of slope space the corners span, and the sun the cell reflects is eq. 15 with
+// that parallelogram's density convolved with the sun's disc (OceanCellReflectedSun,
 // ocean/cell_slope_density.glsl: the cells' parallelograms tile slope space as the cells tile the
 // sea, so the sum over cells is the integral of delta(slope(x) - mirror slope) over the sea,
 // seen through the sun's disc).
@@ -73,16 +73,19 @@
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_cell.glsl"
 
-// One invocation per segment of reference_segment cells of a row of cells of one footprint:
-// id = first_invocation + gl_GlobalInvocationID.x = ((footprint - first_footprint) x segments +
-// segment) x reference_max_cells + row, segments = ceil(reference_max_cells /
-// reference_segment). The CPU dispatches whole footprints per batch from first_footprint, so that
-// the 32-bit id counts one batch, not the lattice (whose slots, footprints x cap x segments,
-// passed 2^32 on the 4 m cases of the 20 m/s sea at 8 x 8 subcells: stop 24). A dispatch is
-// whole work groups of 64: the invocations past its count (id >= invocation_end) do nothing. In
-// pass 2 they would take the next batch's first footprint's rows, which that batch deposits
-// again: from stop 24 to 25 every cap not a multiple of 64 (181, the coarser lattice of 256;
-// 362) doubled up to 63 rows of cells of one footprint per batch, and moved rows by up to 3 %.
+// One invocation per segment of reference_segment cells of a row of cells of one footprint,
+// numbered without gaps (stop 34): footprint f's ky x ceil(kx / reference_segment) invocations
+// start at footprint_starts[f], counted from its batch's first, and within it consecutive
+// invocations take consecutive rows of one segment. The CPU (ocean_node.cpp, run_scatter) reads
+// the footprints' kx and ky back after pass 1 and cuts the lattice into batches of whole
+// footprints [first_footprint, footprint_end) whose invocations a 32-bit index counts; a
+// dispatch is whole work groups of 64, and those past its count (id >= invocation_end) do
+// nothing. Until stop 33 every footprint had cap x ceil(cap / reference_segment) slots whatever
+// its cells, which held each side to the cap (a footprint of 50,000 x 1,000 cells would have
+// needed 50,000^2 / reference_segment slots) and spent most invocations on slots past a small
+// footprint's cells; in pass 2 the last work group's spare invocations once took the next
+// batch's first footprint's rows, which that batch deposited again (stops 24-25: rows moved by
+// up to 3 %).
 //
 // Why segments. llvmpipe (Mesa's CPU renderer, the tests' and CI's) ends every loop of a shader
 // invocation once the invocation has run 65535 loop iterations in all (gallivm's
@@ -108,7 +111,9 @@ uniform float fresnel_r;  // R of Schlick's Fresnel (eq. 14), as in ocean_lighti
 // m: the widest cell on the sea at rest that counts as resolved (ocean_node.cpp:
 // the shortest wavelength / cells per wavelength).
 uniform float reference_spacing;
-uniform int reference_max_cells;  // most cells per footprint side
+// The cap: most cells per footprint, reference_max_cells^2, in whatever shape its footprint
+// needs (see the footprints' pass).
+uniform int reference_max_cells;
 // Subcells per side of a cell whose slopes come near the mirror slope (1: none; see
 // ScatterCell), at most REFERENCE_MAX_REFINE.
 uniform int reference_refine;
@@ -119,6 +124,7 @@ uniform int margin;               // pixels added beyond each edge of the image
 uniform uint first_invocation;    // of this dispatch (the CPU dispatches in batches)
 uniform uint invocation_end;      // and one past its last (first_invocation + its count)
 uniform uint first_footprint;     // pass 2: the batch's first footprint
+uniform uint footprint_end;       // and one past its last
 uniform int reference_segment;    // most cells of a row per invocation (see above)
 // m: a bound on the displacement of every wave together (sum of amplitudes), for the margin's
 // test below.
@@ -383,9 +389,9 @@ CellGlint ReferenceCellGlint(Corner c00, Corner c10, Corner c01, Corner c11, vec
 
 // The most subcells per side of a refined cell (the corner rows ScatterCell keeps).
 #define REFERENCE_MAX_REFINE 8
-// The share of the cap a footprint past it takes per side at the cap (and less beyond): its pixel
-// is reported unresolved and compared nowhere, so its lattice only draws the reference's picture
-// of the far glitter (see the footprints' pass).
+// The share per side of the cells wanted that a footprint just past the cap takes (fewer beyond):
+// its pixel is reported unresolved and compared nowhere, so its lattice only draws the
+// reference's picture of the far glitter (see the footprints' pass).
 #define REFERENCE_UNRESOLVED_SHARE 0.25
 // A cell's slopes within this many sigma of the sun's disc (sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE))
 // of the mirror slope are refined: beyond it the disc's Gaussian is below exp(-8) = 3e-4 of its
@@ -500,25 +506,31 @@ void main() {
     const float reach = 2.0 * max_displacement / along * 0.5 * frame_viewport.y / frame_camera_up.w;
     if (max(outside.x, outside.y) > reach + 1.0) return;
   }
-  // Cells per side: no wider than the spacing, at most the cap. A footprint past the cap (it
-  // is reported unresolved, and not compared) gets REFERENCE_UNRESOLVED_SHARE cap sqrt(cap /
-  // want) on its longer side (want the cells it would need there), and at most as many on its
-  // other side: a quarter of the cap past the cap, then coarser with distance, so that the far
-  // rows, which no cap affordable here resolves, stop costing the cap's lattice each (they were
-  // most of the reference's time). Measured on wind10_100m_low_sun (stop 22): cap sqrt(cap /
-  // want) halved the time (rows past the cap moved by a few per cent, the two nearest the
-  // horizon by 30-40 %), and the quarter of it 248 to 143 s more (the unresolved rows by up to
-  // 50 %); the resolved rows did not change at all, bit for bit (docs/validation.md).
+  // Cells per side: no wider than the spacing, at most cap^2 in all, whatever the footprint's
+  // shape (stop 34: until then at most the cap per side, which the long and narrow footprints
+  // near the horizon, 10,000 x 500 cells 3 rows below it on the suite's 100 m views, could not
+  // fit at any cap: docs/validation.md, "The sun's far rows"). A footprint past the cap (it is
+  // reported unresolved, and not compared) keeps its shape with REFERENCE_UNRESOLVED_SHARE^2
+  // cap^2 sqrt(cap^2 / want) cells (want: the cells it would need): a sixteenth of the cap past
+  // the cap, then fewer with distance, so that the far rows, which no affordable cap resolves,
+  // stop costing the cap's lattice each (they were most of the reference's time). On a square
+  // footprint that is the rule of stops 22-33, REFERENCE_UNRESOLVED_SHARE cap sqrt(cap /
+  // side) per side; measured on wind10_100m_low_sun (stop 22): cap sqrt(cap / want) halved the
+  // time (rows past the cap moved by a few per cent, the two nearest the horizon by 30-40 %),
+  // and the quarter of it 248 to 143 s more (the unresolved rows by up to 50 %); the resolved
+  // rows did not change at all, bit for bit (docs/validation.md). Every count stays below 2^24,
+  // a float's whole numbers: cap^2 <= 2048^2.
   const float spacing = max(reference_spacing, 1e-6);
-  const float want_x = ceil(max(distance(q00, q10), distance(q01, q11)) / spacing);
-  const float want_y = ceil(max(distance(q00, q01), distance(q10, q11)) / spacing);
-  const float want = max(want_x, want_y);
-  const float most = want <= float(cap)
-                         ? float(cap)
-                         : REFERENCE_UNRESOLVED_SHARE * float(cap) * sqrt(float(cap) / want);
-  const float kx = clamp(min(want_x, ceil(most)), 1.0, float(cap));
-  const float ky = clamp(min(want_y, ceil(most)), 1.0, float(cap));
-  const float unresolved = (want_x <= float(cap) && want_y <= float(cap)) ? 0.0 : 1.0;
+  const float budget = float(cap) * float(cap);
+  const float want_x = max(ceil(max(distance(q00, q10), distance(q01, q11)) / spacing), 1.0);
+  const float want_y = max(ceil(max(distance(q00, q01), distance(q10, q11)) / spacing), 1.0);
+  const float want = want_x * want_y;
+  const float unresolved = want <= budget ? 0.0 : 1.0;
+  // Per side: the fraction of the cells wanted, REFERENCE_UNRESOLVED_SHARE (budget / want)^(3/4).
+  const float scale =
+      unresolved == 0.0 ? 1.0 : REFERENCE_UNRESOLVED_SHARE * pow(budget / want, 0.75);
+  const float kx = clamp(ceil(want_x * scale), 1.0, budget);
+  const float ky = clamp(ceil(want_y * scale), 1.0, budget);
   // The heights of the waves the grid (a vertex per pixel) cannot draw: shorter than 2
   // footprints (the wakes' are not counted).
   const float footprint_size = max(max(distance(q00, q10), distance(q01, q11)),
@@ -532,49 +544,63 @@ void main() {
 }
 #else
 // Pass 2: one invocation per segment of a row of cells of a footprint (see above).
+layout(std430, binding = 9) readonly buffer ReferenceFootprintStarts { uint footprint_starts[]; };
+
 void main() {
-  const int cap = max(reference_max_cells, 1);
   const int segment_cells = max(reference_segment, 1);
-  const int segments = (cap + segment_cells - 1) / segment_cells;
-  // Consecutive invocations take consecutive rows of one segment: the SIMD lanes of a work group
-  // (llvmpipe runs 8 in lockstep) are then active or idle together.
   const uint id = first_invocation + gl_GlobalInvocationID.x;
   if (id >= invocation_end) return;
-  const int j = int(id % uint(cap));
-  const uint segment_id = id / uint(cap);
-  const int segment = int(segment_id % uint(segments));
-  const uint footprint = first_footprint + segment_id / uint(segments);
-  const int columns = int(frame_viewport.x) + 2 * margin;
-  const int rows = int(frame_viewport.y) + 2 * margin;
-  if (footprint >= uint(columns * rows)) return;
+  // The footprint: the last of the batch whose first invocation is not past id (footprints with
+  // no cells share their start with the next, and are passed over).
+  uint low_footprint = first_footprint, high_footprint = footprint_end;
+  while (high_footprint - low_footprint > 1u) {
+    const uint middle = (low_footprint + high_footprint) / 2u;
+    if (footprint_starts[middle] <= id)
+      low_footprint = middle;
+    else
+      high_footprint = middle;
+  }
+  const uint footprint = low_footprint;
   const vec4 cells = footprints[3u * footprint + 2u];
   const int kx = int(cells.x), ky = int(cells.y);
-  const int first = segment * segment_cells;
-  if (j >= ky || first >= kx) return;  // (kx = ky = 0: a footprint with nothing to scatter)
+  if (ky < 1) return;
+  const uint local_id = id - footprint_starts[footprint];
+  const int j = int(local_id % uint(ky));
+  const int first = int(local_id / uint(ky)) * segment_cells;
+  if (first >= kx) return;
   const int last = min(kx, first + segment_cells);
   const float unresolved = cells.z;
   const float unresolved_height = cells.w;
   const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
-  // The corners from the footprint's q00 (footprint_origin: see ReferenceCorner).
-  footprint_origin = q0.xy;
-  const vec2 q10 = q0.zw - footprint_origin, q01 = q1.xy - footprint_origin;
-  const vec2 q11 = q1.zw - footprint_origin;
+  // The footprint's corners from its q00 (m, nadir frame's axes).
+  const vec2 q10 = q0.zw - q0.xy, q01 = q1.xy - q0.xy, q11 = q1.zw - q0.xy;
   // The rows j and j + 1 of corners, cells first to last - 1 of them, left to right, two corners
-  // at a time (offsets from footprint_origin; the rest heights at their positions).
-  const float v0 = float(j) / float(ky), v1 = float(j + 1) / float(ky);
+  // at a time. Each is given from the segment's first corner of row j (footprint_origin: see
+  // ReferenceCorner), by differences that stay as small as the segment: a corner's offset from
+  // the footprint's q00 reaches the footprint's length, 64,000 cells one row below the horizon on
+  // the suite's views, where a float's rounding is 1.5e-3 rad of the shortest wave's argument
+  // (2 pi 64,000 / 16 x 6e-8), 3 % of the 0.049 rad across a subcell at 16 cells per wavelength
+  // and 8 x 8 subcells; the arguments' differences across a subcell, from which its
+  // parallelogram is made, would carry that rounding (stop 31's noise; 0.1 % at the 2,048 cells
+  // a side that were the most until stop 34).
+  // Row v's corner at u is a(v) + u (b(v) - a(v)), a(v) = v q01, b(v) = q10 + v (q11 - q10).
+  const float v0 = float(j) / float(ky);
   const vec2 a0 = v0 * q01, b0 = mix(q10, q11, v0);
-  const vec2 a1 = v1 * q01, b1 = mix(q10, q11, v1);
+  const vec2 edge0 = b0 - a0;                              // row j's, along u
+  const vec2 edge1 = edge0 + (q11 - q10 - q01) / float(ky);  // row j + 1's
   const float u0 = float(first) / float(kx);
-  const vec2 first_low = mix(a0, b0, u0), first_high = mix(a1, b1, u0);
-  Corner low = ReferenceCorner(first_low);
+  const vec2 segment_origin = a0 + u0 * edge0;
+  footprint_origin = q0.xy + segment_origin;
+  // Row j + 1's corner at u0, from row j's: (a1 - a0) + u0 (edge1 - edge0).
+  const vec2 first_high = (q01 + u0 * (q11 - q10 - q01)) / float(ky);
+  Corner low = ReferenceCorner(vec2(0.0));
   Corner high = ReferenceCorner(first_high);
-  vec3 low_rest =
-      vec3(first_low, ReferenceRestHeight(frame_sea_curvature, footprint_origin + first_low));
+  vec3 low_rest = vec3(0.0, 0.0, ReferenceRestHeight(frame_sea_curvature, footprint_origin));
   vec3 high_rest =
       vec3(first_high, ReferenceRestHeight(frame_sea_curvature, footprint_origin + first_high));
   for (int i = first + 1; i <= last; ++i) {
-    const float u = float(i) / float(kx);
-    const vec2 low_xy = mix(a0, b0, u), high_xy = mix(a1, b1, u);
+    const float du = float(i - first) / float(kx);
+    const vec2 low_xy = du * edge0, high_xy = first_high + du * edge1;
     const Corner next_low = ReferenceCorner(low_xy);
     const Corner next_high = ReferenceCorner(high_xy);
     const vec3 next_low_rest =

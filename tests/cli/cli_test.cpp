@@ -195,7 +195,7 @@ TEST_F(Cli, LightTermsAddUp) {
 TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   for (const char* method : {"full", "basic", "normals", "reference"}) {
     const std::string name(method);
-    // (--sun-cells 32: the reference's sun at the default 256 cells per pixel side costs two
+    // (--sun-cells 32: the reference's sun at the default 256^2 cells per pixel costs two
     // minutes here for nothing this test looks at.)
     ASSERT_EQ(run("render " + kSmall + " --no-png --method " + name +
                   " --samples 4 --sun-cells 32 -o " + name + ".exr --stats " + name + ".json")

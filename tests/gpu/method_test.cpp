@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -196,9 +198,10 @@ TEST(OceanMethods, BasicIsFullWhereTheForegroundResolvesNothing) {
 // (shaders/ocean/reference_sun_scatter.comp), resolves every wave across most of the image at 8
 // cells per shortest wavelength; the camera at 100 m sees the sea from 120 m to 560 m. Bands of
 // 4 rows (the glint of one sea is sparse: a single row's total follows its few facets). At 64 x 40
-// the reference resolves rows 4-39; measured there (docs/validation.md): the full method within
-// 0.5-28 % of every band (mean 8.1 %), the basic one 92 %, 76 % and 58 % low in the three
-// farthest (mean 30 %).
+// the reference resolves every row (rows 4-39 until stop 34, when each footprint's cap became
+// 256^2 cells in any shape instead of 256 per side); measured: the full method within 0.9-30 % of
+// every band (mean 9.0 %), the basic one 98 %, 93 %, 78 % and 60 % low in the four farthest
+// (mean 35 %; 30 % over rows 4-39).
 TEST(OceanMethods, FullIsCloserToTheReferenceThanBasicBeyond100m) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(100.0);
@@ -206,8 +209,8 @@ TEST(OceanMethods, FullIsCloserToTheReferenceThanBasicBeyond100m) {
   scene.image.height = 40;
   scene.ocean.lambda_min = 1.0;
   const LightTerms sun{true, false, false, false};
-  // 8 cells per shortest wavelength, at most 256 per pixel side (the default's 16 resolves only
-  // rows 12-39 at that cap, and no more than 8 separate the methods there; docs/validation.md
+  // 8 cells per shortest wavelength, at most 256^2 per pixel (the default's 16 resolved only
+  // rows 12-39 at 256 per side, and no more than 8 separate the methods there; docs/validation.md
   // measures what the coarser lattice moves).
   const Render reference = render(*context, scene, ocean::OceanMethod::reference, sun, 8, 8);
   const Render full = render(*context, scene, ocean::OceanMethod::full, sun);
@@ -246,7 +249,7 @@ TEST(OceanMethods, FullIsCloserToTheReferenceThanBasicBeyond100m) {
               decisive, full_sum / bands, basic_sum / bands);
   EXPECT_GE(bands, 5);
   EXPECT_GE(decisive, 1);
-  // Measured: mean deviation 0.081 (full) against 0.297 (basic), a ratio of 0.27.
+  // Measured: mean deviation 0.090 (full) against 0.350 (basic), a ratio of 0.26.
   EXPECT_LT(full_sum, 0.8 * basic_sum);
 }
 
@@ -289,7 +292,8 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
       stats.sun_lattice_ms, stats.sun_lattice_margin);
   EXPECT_EQ(stats.samples, 16);
   EXPECT_LT(stats.sample_row_change, 0.01);
-  // Measured: 21 rows, 0.062 with the default 4 x 4 refinement near the mirror slope (16
+  // Measured: 28 rows, 0.107 (21 rows, 0.062 while the cap was 64 per side, until stop 34)
+  // with the default 4 x 4 refinement near the mirror slope (16
   // against 11.3 cells per wavelength where the glints are); 0.38 unrefined (4 against 2.8, far
   // from converged: the parallelogram's bias is 9 % at 8, tests/unit/cell_slope_density_test.cpp).
   EXPECT_EQ(stats.sun_lattice_refine, 4);
@@ -299,7 +303,7 @@ TEST(OceanMethods, ScatteredReferenceSunDoesNotDependOnTheSamples) {
   EXPECT_GT(stats.sun_lattice_ms, 0.0);
   for (float v : renderer.image().rgba) ASSERT_TRUE(std::isfinite(v));
   // Per row, top first as the image's: a row the lattice counted holds sun and is resolved
-  // (the far rows at the top are not, at 64 cells per pixel side; rows counted from the bottom
+  // (the farthest rows at the top are not, at 64^2 cells per pixel; rows counted from the bottom
   // would land there), and the largest change is the reported one.
   ASSERT_EQ(stats.sun_lattice_row_changes.size(), std::size_t(scene.image.height));
   ASSERT_EQ(stats.sample_row_changes.size(), std::size_t(scene.image.height));
@@ -342,16 +346,20 @@ struct SunRows {
   std::vector<double> totals, resolved;
   int refine = 0;  // the subcells per side that ran (RenderStats::sun_lattice_refine)
   bool float_atomics = false;  // RenderStats::sun_lattice_float_atomics
+  std::vector<std::array<int, 2>> row_cells;  // RenderStats::sun_lattice_row_cells
 };
 SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
-                           int refine, int cap, bool float_atomics = true) {
+                           int refine, int cap, bool float_atomics = true,
+                           std::uint64_t batch = ocean::kReferenceMaxSunBatch) {
   RendererOptions options = reference_sun_options(cells_per_wavelength, refine, cap);
   options.reference.measure_lattice = false;
   options.reference.sun_float_atomics = float_atomics;
+  options.reference.sun_batch_invocations = batch;
   Renderer renderer(context, scene, options);
   renderer.render();
   return {green_row_totals(renderer.image()), renderer.stats().resolved_rows,
-          renderer.stats().sun_lattice_refine, renderer.stats().sun_lattice_float_atomics};
+          renderer.stats().sun_lattice_refine, renderer.stats().sun_lattice_float_atomics,
+          renderer.stats().sun_lattice_row_cells};
 }
 
 // The scatter tests' view: validation_scene at 100 m, 24 x 16 pixels, waves from 2 m (so that
@@ -412,34 +420,78 @@ TEST(OceanMethods, RefinedSunLatticeIsTheFinerLattice) {
   EXPECT_LT(worst(refined32, refined32_by8), 0.05);
 }
 
-// The scatter's cells' pass runs in batches of whole footprints (cap x segments invocations
-// each), so that its 32-bit invocation index counts a batch, not the lattice, whose slots passed
-// 2^32 on the default suite's 4 m cases of the 20 m/s sea at 8 x 8 subcells (stop 24). The
-// lattice does not depend on the cap where no footprint reaches it, so two caps draw the same
-// lattice through batches of 16 times as many footprints apart: their resolved rows agree to the
-// float sums' order. And a cap that is not a multiple of 64 (1000) ends each batch inside a work
-// group, whose invocations past the batch must do nothing: from stop 24 to 25 they drew the
-// next batch's first footprint's first rows twice (a row moved by 3.3 % at the coarser lattice
-// of 256 cells, 181, on wind3_4m_low_sun).
+// The scatter's cells' pass runs in batches of whole footprints whose invocations (one per
+// segment of a row of a footprint's cells, numbered without gaps since stop 34) its 32-bit index
+// counts; the lattice's passed 2^32 on the default suite's 4 m cases of the 20 m/s sea at 8 x 8
+// subcells (stop 24), so a GPU may need several batches. Small batches, each ending inside a
+// work group of 64 (whose invocations past the batch must do nothing: from stop 24 to 25 they
+// drew the next batch's first footprint's first rows twice, and moved a row by 3.3 %), and a
+// batch smaller than a footprint (which then goes alone) draw the same image as one batch: the
+// same float sums in another order (measured 3.5e-7).
 TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   auto context = test::make_test_context();
   const Scene scene = small_sun_scene();
-  const SunRows large = reference_sun_rows(*context, scene, 4, 4, 1024);
-  for (const int cap : {256, 1000}) {
-    const SunRows small = reference_sun_rows(*context, scene, 4, 4, cap);
-    ASSERT_EQ(small.resolved.size(), std::size_t(scene.image.height));
-    int compared = 0;
-    double worst = 0.0;
-    for (int y = 0; y < scene.image.height; ++y)
-      if (small.resolved[y] >= 0.99 && large.resolved[y] >= 0.99 && large.totals[y] > 0.0) {
-        worst = std::max(worst, std::abs(small.totals[y] / large.totals[y] - 1.0));
-        ++compared;
-      }
-    std::printf("caps %d and 1024: %d rows resolved by both, worst difference %.2e\n", cap,
-                compared, worst);
-    EXPECT_GE(compared, 8) << cap;
-    EXPECT_LT(worst, 1e-4) << cap;
+  const SunRows whole = reference_sun_rows(*context, scene, 4, 4, 1024);
+  for (const std::uint64_t batch : {std::uint64_t(1000), std::uint64_t(1)}) {
+    const SunRows batched = reference_sun_rows(*context, scene, 4, 4, 1024, true, batch);
+    EXPECT_EQ(batched.resolved, whole.resolved);
+    EXPECT_EQ(batched.row_cells, whole.row_cells);
+    const RowChange change = worst_row_change(whole.totals, batched.totals);
+    std::printf("batches of at most %llu invocations: %d lit rows, worst difference %.2e\n",
+                static_cast<unsigned long long>(batch), change.rows, change.worst);
+    EXPECT_GE(change.rows, 8) << batch;
+    EXPECT_LT(change.worst, 1e-4) << batch;
   }
+}
+
+// Each footprint is cut into cells no wider than the spacing, at most cap^2 of them in whatever
+// shape its footprint has (since stop 34; until then at most the cap per side, which the long
+// and narrow footprints toward the horizon could not fit at any affordable cap). Here the top
+// rows' footprints are several times longer along the view than across it: with the cap at the
+// square root of a middle row's cells, the rows whose footprints fit in cap^2 are resolved, even
+// where a side is longer than the cap, and drawn as with no cap at all (but for the one next to
+// the rows past the cap, into which their coarser cells' glints fall: 1.2 % here); the rows past
+// it are drawn with fewer cells (REFERENCE_UNRESOLVED_SHARE: at most a sixteenth of cap^2) and
+// reported unresolved.
+TEST(OceanMethods, ScatteredSunCutsEachFootprintByItsCells) {
+  auto context = test::make_test_context();
+  const Scene scene = small_sun_scene();
+  const SunRows uncapped = reference_sun_rows(*context, scene, 4, 4, 2048);
+  ASSERT_EQ(uncapped.row_cells.size(), std::size_t(scene.image.height));
+  const auto cells = [](const std::array<int, 2>& c) { return double(c[0]) * double(c[1]); };
+  for (int y = 0; y < scene.image.height; ++y) {
+    ASSERT_EQ(uncapped.resolved[y], 1.0) << "row " << y;
+  }
+  const int cap = static_cast<int>(
+      std::ceil(std::sqrt(cells(uncapped.row_cells[std::size_t(scene.image.height / 2)]))));
+  const SunRows capped = reference_sun_rows(*context, scene, 4, 4, cap);
+  int resolved = 0, unresolved = 0, longer_than_cap = 0;
+  for (int y = 0; y < scene.image.height; ++y) {
+    const std::array<int, 2> wanted = uncapped.row_cells[y];
+    if (cells(wanted) == 0.0) continue;  // no sea
+    if (cells(wanted) <= double(cap) * cap) {
+      ++resolved;
+      if (std::max(wanted[0], wanted[1]) > cap) ++longer_than_cap;
+      EXPECT_EQ(capped.resolved[y], 1.0) << "row " << y;
+      EXPECT_EQ(capped.row_cells[y], wanted) << "row " << y;
+      const bool beside_unresolved =
+          (y > 0 && cells(uncapped.row_cells[y - 1]) > double(cap) * cap) ||
+          (y + 1 < scene.image.height && cells(uncapped.row_cells[y + 1]) > double(cap) * cap);
+      if (uncapped.totals[y] > 0.0 && !beside_unresolved) {
+        EXPECT_LT(std::abs(capped.totals[y] / uncapped.totals[y] - 1.0), 1e-4) << "row " << y;
+      }
+    } else {
+      ++unresolved;
+      EXPECT_LT(capped.resolved[y], 1.0) << "row " << y;
+      // A sixteenth of cap^2, times sqrt(cap^2 / wanted) < 1, and each side's rounding up.
+      const std::array<int, 2> drawn = capped.row_cells[y];
+      EXPECT_LE(cells(drawn), double(cap) * cap / 16.0 + drawn[0] + drawn[1] + 1.0) << "row " << y;
+    }
+  }
+  std::printf("cap %d: %d rows resolved (%d with a side longer than the cap), %d not\n", cap,
+              resolved, longer_than_cap, unresolved);
+  EXPECT_GE(longer_than_cap, 1);
+  EXPECT_GE(unresolved, 1);
 }
 
 // The scatter adds its cells' shares with float atomics where the context has
@@ -573,9 +625,11 @@ TEST(OceanMethods, ScatteredSunHoldsItsCapWhileItsCellsDouble) {
   ASSERT_GE(held.sun_lattice_rows, 1);
   EXPECT_LT(held.sun_lattice_rows, growing.sun_lattice_rows);
   ASSERT_EQ(held.sun_lattice_row_changes.size(), growing.sun_lattice_row_changes.size());
-  for (std::size_t y = 0; y < held.sun_lattice_row_changes.size(); ++y)
-    if (!std::isnan(held.sun_lattice_row_changes[y]))
+  for (std::size_t y = 0; y < held.sun_lattice_row_changes.size(); ++y) {
+    if (!std::isnan(held.sun_lattice_row_changes[y])) {
       EXPECT_FALSE(std::isnan(growing.sun_lattice_row_changes[y])) << "row " << y;
+    }
+  }
   // They are the rows the held lattice resolves, as when it is drawn directly (against its half,
   // which resolves the same footprints): not those only the lattice before it resolved.
   const RenderStats direct = render(32, 4.0, 4.0);

@@ -240,7 +240,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   EXPECT_NE(index.find("half the cells): sun 1.8%; all 1.75%; its lattice 17.68 cells per "
                        "shortest wavelength (sun);"),
             std::string::npos);
-  EXPECT_NE(index.find("doubles them (per wavelength and per pixel side, times sqrt 2) up to 1/25 "
+  EXPECT_NE(index.find("doubles them (per wavelength times sqrt 2, per pixel times 2) up to 1/25 "
                        "of the shortest wavelength"),
             std::string::npos);
   EXPECT_EQ(index.find("<markup>"), std::string::npos);

@@ -866,16 +866,15 @@ std::string index_html(const Report& report,
        html(report.reference.sun) + " in cells of at most 1/" +
        short_number(report.reference.sun_cells_per_wavelength) +
        " of the shortest wavelength, at most " + std::to_string(report.reference.sun_cells()) +
-       " per pixel side" +
+       "<sup>2</sup> per pixel" +
        (report.reference.sun_refine > 1
             ? ", those whose slopes come near the mirror slope cut into " +
                   std::to_string(report.reference.sun_refine) + " x " +
                   std::to_string(report.reference.sun_refine) + " subcells"
             : std::string()) +
-       (report.reference.sun_max_cells_per_wavelength >
-                report.reference.sun_cells_per_wavelength
+       (report.reference.sun_max_cells_per_wavelength > report.reference.sun_cells_per_wavelength
             ? "; while its lattice moves a row by 1 % or more against half its cells, it doubles "
-              "them (per wavelength and per pixel side, times sqrt 2) up to 1/" +
+              "them (per wavelength times sqrt 2, per pixel times 2) up to 1/" +
                   short_number(report.reference.sun_max_cells_per_wavelength) +
                   " of the shortest wavelength"
             : std::string()) +

@@ -3,6 +3,7 @@
 // reference, and so that users can render each.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -31,11 +32,14 @@ enum class OceanMethod {
 // references, a few isolated glints a row in the foreground, still moved rows by 1.4 % between
 // 45.25 and 64 (stop 29, docs/validation.md), so the lattice may double twice more. Cells per
 // pixel side, scattered: the lattice's cap grows with its cells (sun_cells times sqrt 2 each
-// doubling), 256 at 16 per wavelength reaching 2,048 at 128; each footprint's
-// cap x ceil(cap / segment) invocations stay far below the shader's 32-bit index per batch
-// (4.2e6 at 2,048 with one cell per invocation).
+// doubling), 256 at 16 per wavelength reaching 2,048 at 128; a footprint has at most cap^2
+// cells in whatever shape (since stop 34), 4.2e6 at 2,048, so its invocations (at most one per
+// cell) fit one batch of the shader's 32-bit index.
 inline constexpr double kReferenceMaxCellsPerWavelength = 128.0;
 inline constexpr int kReferenceMaxSunCells = 2048;
+// The most invocations of one batch of the scattered sun's cells' pass: its shader counts them in
+// 32 bits (reference_sun_scatter.comp). A footprint's are at most kReferenceMaxSunCells^2.
+inline constexpr std::uint64_t kReferenceMaxSunBatch = std::uint64_t(1) << 31;
 // The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
 // at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
 inline constexpr int kReferenceMaxPixelSamples = 16384;

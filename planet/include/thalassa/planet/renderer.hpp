@@ -6,6 +6,7 @@
 // (attach_host_context()). This header exposes no GL types.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -76,10 +77,16 @@ struct RenderStats {
   // when the lattice was not measured.
   std::vector<double> sun_lattice_row_changes;
   // The lattice as drawn, after sun_lattice_doublings doublings of its cells
-  // (ReferenceSampling::sun_max_cells_per_wavelength): its cells per shortest wavelength and most
-  // cells per pixel side. The change above is against the lattice before its last doubling.
+  // (ReferenceSampling::sun_max_cells_per_wavelength): its cells per shortest wavelength and cap
+  // (at most its square per pixel's footprint). The change above is against the lattice before
+  // its last doubling.
   double sun_lattice_cells_per_wavelength = 0.0;
   int sun_lattice_cells = 0;
+  // Per image row (top first), the cells along the image's x and y of the lattice's footprint
+  // with the most cells in that row (a footprint is resolved when they are at most
+  // sun_lattice_cells^2 together, in whatever shape); empty when the lattice was kept
+  // (sun_lattice_reused) or not scattered.
+  std::vector<std::array<int, 2>> sun_lattice_row_cells;
   int sun_lattice_doublings = 0;
   bool sun_lattice_float_atomics = false;  // its sums added by float atomics (sun_float_atomics)
   // Its sums taken from ReferenceSampling::sun_cache, as another render scattered them: then
@@ -124,7 +131,9 @@ struct LightTerms {
 // whose glint is the sun's parallelogram (shaders/ocean/reference_cell.glsl).
 enum class ReferenceSun {
   // Once per image: each pixel's footprint on the sea at rest is cut into a lattice of cells (at
-  // most sun_cells per pixel side, [1, 2048]) and each cell's sun is added to the pixel that sees
+  // most sun_cells^2 per footprint, in whatever shape it needs: the footprints near the horizon
+  // are thousands of cells along the view and tens across; sun_cells in [1, 2048]) and each
+  // cell's sun is added to the pixel that sees
   // its glint (shaders/ocean/reference_sun_scatter.comp). The same for every sample: the sun
   // adds no noise between sample counts, and its convergence is measured instead against a
   // lattice of half the cells (RenderStats::sun_lattice_row_change). It does not depend on the
@@ -153,8 +162,9 @@ const char* reference_sun_name(ReferenceSun sun);
 // multiple of s^2).
 //
 // The reflected sun is integrated over cells of the sea (ReferenceSun); sun_cells,
-// sun_cells_per_wavelength and sun_refine size them. Pixels or strata that would need more than
-// sun_cells per side are drawn with fewer and reported unresolved (RenderStats::resolved_rows).
+// sun_cells_per_wavelength and sun_refine size them. Pixels that would need more than sun_cells^2
+// (scattered) or strata more than their share of sun_cells per side (gathered) are drawn with
+// fewer and reported unresolved (RenderStats::resolved_rows).
 // Measured (docs/validation.md, stop 22): the scattered sun's resolved rows move by 1.0 % at
 // most between 16 cells per wavelength refined 4 x 4 and its lattice of half the cells, 24 %
 // unrefined.
@@ -186,8 +196,8 @@ struct ReferenceSampling {
   // (the default): none, the lattice as sun_cells_per_wavelength says; else in
   // [sun_cells_per_wavelength, 128] (ocean/method.hpp's limits).
   double sun_max_cells_per_wavelength = 0.0;
-  // Scattered, doubling: the most cells per pixel side, in [sun_cells, 2048]. Past it the cells
-  // per pixel side are held while the cells per wavelength go on doubling; the footprints the
+  // Scattered, doubling: the most cap, in [sun_cells, 2048]. Past it the cap is held while the
+  // cells per wavelength go on doubling; the footprints the
   // finer lattice then no longer resolves (the farthest compared) drop out of the comparison,
   // which takes the rows both lattices of a doubling resolve. With sun_cells at 2048 the far
   // rows are resolved at the first lattice and the doublings give them up only if they must
@@ -198,6 +208,11 @@ struct ReferenceSampling {
   // same sums to float rounding in either order; under contention, one atomic against a retry
   // loop (the H200 took 6-30 s per sun term with the loop alone, stop 26).
   bool sun_float_atomics = true;
+  // Scattered: the most invocations per batch of the lattice's cells' pass (one per segment of a
+  // row of a footprint's cells; whole footprints per batch, one alone where it has more), in
+  // [1, 2^31]. The image does not depend on it (OceanMethods.ScatteredSunDoesNotDependOnItsBatches
+  // draws many small batches); the default makes one batch of every lattice the suite draws.
+  std::uint64_t sun_batch_invocations = ocean::kReferenceMaxSunBatch;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,
   // when this render asks for that lattice without measuring it (ocean/scattered_sun_cache.hpp;

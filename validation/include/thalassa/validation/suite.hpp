@@ -109,12 +109,13 @@ struct ReferenceSettings {
   // 0: pixel_samples.
   int pixel_samples_without_sun = 0;
   // Normal samples per pixel for the sun's disc, [1, 2048^2]: the reference's sun integrates
-  // over up to round(sqrt(n)) x round(sqrt(n)) cells of each pixel's footprint
+  // over up to round(sqrt(n))^2 cells of each pixel's footprint, in whatever shape it needs
   // (ReferenceSampling::sun_cells, shaders/ocean/reference_sun_scatter.comp), each at most the
   // shortest wavelength / sun_cells_per_wavelength ([1, 128]) wide. The footprints that need
-  // more are not compared: 256 (65536, the default) resolves the nearer 18-25 of the default
-  // suite's 47-51 sea rows, 2048 reaches row 30 or so (docs/validation.md, "The sun's far
-  // rows").
+  // more are not compared: on the default suite's 100 m views 256^2 (65536, the default here,
+  // and the default suite's until stop 34, when it meant 256 per side: rows 47-71) resolves rows
+  // 37-71 of the sea's 21-71, 512^2 rows 31-71 and 2048^2 (the default suite's) rows 25-71
+  // (docs/validation.md, "Footprints cut by their cells").
   int sun_normal_samples = 65536;
   double sun_cells_per_wavelength = 16.0;
   // How the reference integrates the sun over its cells: "scattered" (once per image from a
@@ -135,8 +136,8 @@ struct ReferenceSettings {
   int max_samples(bool with_sun) const {
     return with_sun || pixel_samples_without_sun <= 0 ? pixel_samples : pixel_samples_without_sun;
   }
-  // The sun's cells per pixel side: round(sqrt(sun_normal_samples)), at least 1
-  // (ReferenceSampling::sun_cells).
+  // The square root of the sun's most cells per pixel's footprint: round(sqrt(sun_normal_samples)),
+  // at least 1 (ReferenceSampling::sun_cells).
   int sun_cells() const {
     return std::max(1, static_cast<int>(std::lround(std::sqrt(double(sun_normal_samples)))));
   }

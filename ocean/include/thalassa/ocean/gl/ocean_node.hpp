@@ -37,11 +37,12 @@ struct OceanNodeOptions {
   OceanMethod method = OceanMethod::full;
   // The reference's sun (planet/renderer.hpp, ReferenceSun): with reference_sun_scatter (the
   // default), scattered once per image from a lattice of the sea
-  // (shaders/ocean/reference_sun_scatter.comp), at most reference_sun_cells per pixel side,
-  // [1, 2048]; without it, gathered per sample (shaders/ocean/reference_sun.glsl), at most
-  // reference_sun_cells per side of a sample's pixel stratum, [1, 64]. Either way each cell is
-  // at most the shortest wavelength / reference_cells_per_wavelength wide ([1, 128]); a stratum
-  // or pixel whose footprint needs more is drawn with the most and marked unresolved.
+  // (shaders/ocean/reference_sun_scatter.comp), at most reference_sun_cells^2 cells per pixel's
+  // footprint in whatever shape, reference_sun_cells in [1, 2048]; without it, gathered per sample
+  // (shaders/ocean/reference_sun.glsl), at most reference_sun_cells per side of a sample's pixel
+  // stratum, [1, 64]. Either way each cell is at most the shortest wavelength /
+  // reference_cells_per_wavelength wide ([1, 128]); a stratum or pixel whose footprint needs more
+  // is drawn with the most and marked unresolved.
   int reference_sun_cells = 256;
   double reference_cells_per_wavelength = 16.0;
   // With the scatter: each cell whose slopes come near the mirror slope is cut into this many
@@ -54,7 +55,7 @@ struct OceanNodeOptions {
   // With it: while a compared row moves by reference_lattice_tolerance (relative) or more, the
   // lattice doubles its cells (cells per wavelength and reference_sun_cells times sqrt 2) up to
   // reference_max_cells_per_wavelength (below reference_cells_per_wavelength: no doubling). Its
-  // cells per pixel side grow with it up to reference_max_sun_cells and are held there while the
+  // cap grows with it up to reference_max_sun_cells and is held there while the
   // cells per wavelength go on doubling: the footprints past the held cap, which a finer lattice
   // no longer resolves, drop out of the comparison (ReferenceSampling::
   // sun_max_cells_per_wavelength and sun_max_cells; the limits in ocean/method.hpp).
@@ -64,6 +65,9 @@ struct OceanNodeOptions {
   // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
   // (ReferenceSampling::sun_float_atomics), else compare-and-swap.
   bool reference_float_atomics = true;
+  // With the scatter: the most invocations per batch of its cells' pass (ReferenceSampling::
+  // sun_batch_invocations), [1, kReferenceMaxSunBatch].
+  std::uint64_t reference_sun_batch = kReferenceMaxSunBatch;
   // With the scatter: a lattice another render of the same view scattered, drawn instead of
   // scattering it again where everything it depends on matches, and where this render's lattice
   // is stored (ocean/scattered_sun_cache.hpp). Null: every render scatters its own.
