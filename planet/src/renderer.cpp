@@ -202,7 +202,7 @@ struct Renderer::Impl {
       const ReferenceSampling& r = options.reference;
       if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
             r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
-            r.sun_max_cells >= r.sun_cells && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
+            r.sun_max_cells >= 1 && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_batch_invocations >= 1 &&
             r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch &&
             r.sun_cells_per_wavelength >= 1.0 &&
@@ -213,7 +213,7 @@ struct Renderer::Impl {
         throw std::invalid_argument(
             "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
             "sun_cells in [1, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [sun_cells, " +
+            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [1, " +
             std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +

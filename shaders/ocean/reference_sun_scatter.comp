@@ -393,6 +393,8 @@ CellGlint ReferenceCellGlint(Corner c00, Corner c10, Corner c01, Corner c11, vec
 // its pixel is reported unresolved and compared nowhere, so its lattice only draws the
 // reference's picture of the far glitter (see the footprints' pass).
 #define REFERENCE_UNRESOLVED_SHARE 0.25
+// 2^24: the most cells a side may have, the largest float below which every whole number is one.
+const float FLOAT_WHOLE_NUMBERS = 16777216.0;
 // A cell's slopes within this many sigma of the sun's disc (sqrt(OCEAN_SUN_MIN_SLOPE_VARIANCE))
 // of the mirror slope are refined: beyond it the disc's Gaussian is below exp(-8) = 3e-4 of its
 // peak, and the cell reflects nothing a finer cut would change.
@@ -518,8 +520,10 @@ void main() {
   // side) per side; measured on wind10_100m_low_sun (stop 22): cap sqrt(cap / want) halved the
   // time (rows past the cap moved by a few per cent, the two nearest the horizon by 30-40 %),
   // and the quarter of it 248 to 143 s more (the unresolved rows by up to 50 %); the resolved
-  // rows did not change at all, bit for bit (docs/validation.md). Every count stays below 2^24,
-  // a float's whole numbers: cap^2 <= 2048^2.
+  // rows did not change at all, bit for bit (docs/validation.md). A side's count stays within
+  // 2^24, a float's whole numbers (the horizon's row wants 333,000 along the view at 16 per
+  // wavelength), and a footprint's within cap^2 <= 16384^2, which one batch's 32-bit
+  // invocation index counts.
   const float spacing = max(reference_spacing, 1e-6);
   const float budget = float(cap) * float(cap);
   const float want_x = max(ceil(max(distance(q00, q10), distance(q01, q11)) / spacing), 1.0);
@@ -529,8 +533,8 @@ void main() {
   // Per side: the fraction of the cells wanted, REFERENCE_UNRESOLVED_SHARE (budget / want)^(3/4).
   const float scale =
       unresolved == 0.0 ? 1.0 : REFERENCE_UNRESOLVED_SHARE * pow(budget / want, 0.75);
-  const float kx = clamp(ceil(want_x * scale), 1.0, budget);
-  const float ky = clamp(ceil(want_y * scale), 1.0, budget);
+  const float kx = clamp(ceil(want_x * scale), 1.0, min(budget, FLOAT_WHOLE_NUMBERS));
+  const float ky = clamp(ceil(want_y * scale), 1.0, min(budget, FLOAT_WHOLE_NUMBERS));
   // The heights of the waves the grid (a vertex per pixel) cannot draw: shorter than 2
   // footprints (the wakes' are not counted).
   const float footprint_size = max(max(distance(q00, q10), distance(q01, q11)),

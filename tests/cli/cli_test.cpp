@@ -268,7 +268,7 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   // The limits of ocean/method.hpp: past them, refused before anything renders.
   for (const std::string& past : std::vector<std::string>{"--sun-cells-per-wavelength 129",
                                                           "--sun-max-cells-per-wavelength 129",
-                                                          "--sun-cells 2049"}) {
+                                                          "--sun-cells 16385"}) {
     const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
     EXPECT_EQ(refused.status, 2) << past;
     EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;
@@ -518,7 +518,7 @@ TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   for (const std::string& past :
        std::vector<std::string>{"--reference-samples 0", "--reference-samples 16385",
                                 "--reference-sun-max-cells-per-wavelength 129",
-                                "--reference-sun-cells 0", "--reference-sun-cells 2049"}) {
+                                "--reference-sun-cells 0", "--reference-sun-cells 16385"}) {
     const Result range = run("validate -o out " + past);
     EXPECT_EQ(range.status, 2) << range.err;
     EXPECT_NE(range.err.find(past.substr(0, past.find(' '))), std::string::npos) << range.err;

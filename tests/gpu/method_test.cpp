@@ -456,7 +456,10 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
 TEST(OceanMethods, ScatteredSunCutsEachFootprintByItsCells) {
   auto context = test::make_test_context();
   const Scene scene = small_sun_scene();
-  const SunRows uncapped = reference_sun_rows(*context, scene, 4, 4, 2048);
+  // (The scatter's most: cap^2 past 2^24, where each side's count is held to a float's whole
+  // numbers instead.)
+  const SunRows uncapped =
+      reference_sun_rows(*context, scene, 4, 4, ocean::kReferenceMaxSunCells);
   ASSERT_EQ(uncapped.row_cells.size(), std::size_t(scene.image.height));
   const auto cells = [](const std::array<int, 2>& c) { return double(c[0]) * double(c[1]); };
   for (int y = 0; y < scene.image.height; ++y) {
@@ -639,10 +642,16 @@ TEST(OceanMethods, ScatteredSunHoldsItsCapWhileItsCellsDouble) {
     EXPECT_EQ(std::isnan(held.sun_lattice_row_changes[y]),
               std::isnan(direct.sun_lattice_row_changes[y]))
         << "row " << y;
-  // An invalid cap: below the first lattice's cells.
-  RendererOptions bad = reference_sun_options(2.0, 2, 32);
-  bad.reference.sun_max_cells = 16;
-  EXPECT_THROW(Renderer(*context, scene, bad), std::invalid_argument);
+  // A cap to hold below the first lattice's is that lattice's: it is held from the start.
+  const RenderStats below = render(16);
+  EXPECT_EQ(below.sun_lattice_cells, 32);
+  EXPECT_EQ(below.sun_lattice_rows, held.sun_lattice_rows);
+  // Invalid caps: none, and past the scatter's most.
+  for (const int most_cells : {0, ocean::kReferenceMaxSunCells + 1}) {
+    RendererOptions bad = reference_sun_options(2.0, 2, 32);
+    bad.reference.sun_max_cells = most_cells;
+    EXPECT_THROW(Renderer(*context, scene, bad), std::invalid_argument) << most_cells;
+  }
 }
 
 // A reference rendered term by term keeps its sun's lattice (ReferenceSampling::sun_cache): a

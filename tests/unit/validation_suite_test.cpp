@@ -80,7 +80,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   const double most = suite.reference.sun_max_cells_per_wavelength * (1.0 + 1e-9);
   EXPECT_LE(first * std::pow(2.0, 3.0), most);
   EXPECT_GT(first * std::pow(2.0, 3.5), most);
-  // Its first lattice at the scatter's most, 2048^2 cells per pixel's footprint: the sea's rows
+  // Its first lattice at 2048^2 cells per pixel's footprint, the cap its doublings hold: the sea's rows
   // down to 3 degrees below the horizon are resolved (rows 25-71 of wind10_100m_low_sun's 21-71;
   // the suite's 65,536 until stop 34 resolves rows 37-71 as 256^2 in any shape, and resolved
   // 47-71 while it meant 256 per side), and its doublings hold that cap (docs/validation.md,
@@ -312,10 +312,10 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
                                    R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(doubling, doubling.cases[0], env),
             case_fingerprint(not_doubling, not_doubling.cases[0], env));
-  // The sun's first lattice at the scatter's most cells per pixel (the far rows' setting).
-  const Suite far = suite(R"({"pixel_samples": 8, "sun_normal_samples": 4194304})",
+  // The sun's first lattice at the scatter's most cells per pixel (every sea row's setting).
+  const Suite far = suite(R"({"pixel_samples": 8, "sun_normal_samples": 268435456})",
                           R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
-  EXPECT_EQ(far.reference.sun_cells(), 2048);
+  EXPECT_EQ(far.reference.sun_cells(), 16384);
   EXPECT_NE(case_fingerprint(far, far.cases[0], env), a);
   const Suite other_method = suite(R"({"pixel_samples": 8})", R"({"ocean.waves": 120})",
                                    R"({"ocean.wind_speed": 9})", "one");
@@ -509,10 +509,11 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
       {R"({"suite": "s", "reference": {"sun_refine": 9}, "cases": [)" + ok_case + "]}",
        "t.json: reference.sun_refine: expected an integer in [1, 8], got 9"},
-      // (2048^2: the scatter's most cells per pixel.)
-      {R"({"suite": "s", "reference": {"sun_normal_samples": 4194305}, "cases": [)" + ok_case +
+      // (16384^2: the scatter's most cells per pixel.)
+      {R"({"suite": "s", "reference": {"sun_normal_samples": 268435457}, "cases": [)" + ok_case +
            "]}",
-       "t.json: reference.sun_normal_samples: expected an integer in [1, 4194304], got 4194305"},
+       "t.json: reference.sun_normal_samples: expected an integer in [1, 268435456], got "
+       "268435457"},
       {R"({"suite": "s", "reference": {"sun_cells_per_wavelength": 16, "sun_max_cells_per_wavelength": 8}, "cases": [)" +
            ok_case + "]}",
        "t.json: reference.sun_max_cells_per_wavelength: expected at least "

@@ -30,16 +30,23 @@ enum class OceanMethod {
 // shaders/ocean/reference_sun_scatter.comp), checked by everything that takes them (the renderer,
 // the suite file, the command line). Cells per shortest wavelength: the 30-wave variant's
 // references, a few isolated glints a row in the foreground, still moved rows by 1.4 % between
-// 45.25 and 64 (stop 29, docs/validation.md), so the lattice may double twice more. Cells per
-// pixel side, scattered: the lattice's cap grows with its cells (sun_cells times sqrt 2 each
-// doubling), 256 at 16 per wavelength reaching 2,048 at 128; a footprint has at most cap^2
-// cells in whatever shape (since stop 34), 4.2e6 at 2,048, so its invocations (at most one per
-// cell) fit one batch of the shader's 32-bit index.
+// 45.25 and 64 (stop 29, docs/validation.md), so the lattice may double twice more. The cap,
+// scattered (sun_cells): a footprint has at most cap^2 cells, in whatever shape (since stop 34).
+// 16,384 (2.7e8 cells a pixel) resolves the default suite's views at 16 per wavelength down to
+// the row below the horizon's, which needs 8.9e7 (the horizon's row, 1.7e9, stays out of reach:
+// docs/validation.md, "Footprints cut by their cells"); a footprint's invocations (at most one
+// per cell) then fit one batch of the shader's 32-bit index, and each side's cells (at most
+// 333,000 on the horizon's row) a float's whole numbers. The cap grows with the cells as the lattice doubles
+// (times sqrt 2 each doubling) up to sun_max_cells, kReferenceHeldSunCells by default: the
+// default suite's 2,048 is held there, and a reference that must double gives up the far rows
+// its finer cells no longer fit rather than doubling their cost.
 inline constexpr double kReferenceMaxCellsPerWavelength = 128.0;
-inline constexpr int kReferenceMaxSunCells = 2048;
+inline constexpr int kReferenceMaxSunCells = 16384;
+inline constexpr int kReferenceHeldSunCells = 2048;
 // The most invocations of one batch of the scattered sun's cells' pass: its shader counts them in
 // 32 bits (reference_sun_scatter.comp). A footprint's are at most kReferenceMaxSunCells^2.
 inline constexpr std::uint64_t kReferenceMaxSunBatch = std::uint64_t(1) << 31;
+static_assert(std::uint64_t(kReferenceMaxSunCells) * kReferenceMaxSunCells <= kReferenceMaxSunBatch);
 // The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
 // at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
 inline constexpr int kReferenceMaxPixelSamples = 16384;

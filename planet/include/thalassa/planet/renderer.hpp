@@ -196,13 +196,14 @@ struct ReferenceSampling {
   // (the default): none, the lattice as sun_cells_per_wavelength says; else in
   // [sun_cells_per_wavelength, 128] (ocean/method.hpp's limits).
   double sun_max_cells_per_wavelength = 0.0;
-  // Scattered, doubling: the most cap, in [sun_cells, 2048]. Past it the cap is held while the
-  // cells per wavelength go on doubling; the footprints the
-  // finer lattice then no longer resolves (the farthest compared) drop out of the comparison,
-  // which takes the rows both lattices of a doubling resolve. With sun_cells at 2048 the far
-  // rows are resolved at the first lattice and the doublings give them up only if they must
-  // (docs/validation.md, "The sun's far rows").
-  int sun_max_cells = ocean::kReferenceMaxSunCells;
+  // Scattered, doubling: the most the cap grows to, [1, 16384] (below sun_cells: sun_cells). Past
+  // it the cap is held while the cells per wavelength go on doubling; the footprints the finer
+  // lattice then no longer resolves (the farthest compared) drop out of the comparison, which
+  // takes the rows both lattices of a doubling resolve. With sun_cells at 2048 (the default
+  // suite's) the far rows are resolved at the first lattice and the doublings give them up
+  // only if they must (docs/validation.md, "Footprints cut by their cells"): each doubling at a
+  // cap that grows costs twice the one before on every row.
+  int sun_max_cells = ocean::kReferenceHeldSunCells;
   // Scattered: add the cells' shares with the float atomics of GL_NV_shader_atomic_float where
   // the driver has them (NVIDIA's, Mesa's llvmpipe), else by compare-and-swap on their bits. The
   // same sums to float rounding in either order; under contention, one atomic against a retry

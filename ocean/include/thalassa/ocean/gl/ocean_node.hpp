@@ -55,12 +55,13 @@ struct OceanNodeOptions {
   // With it: while a compared row moves by reference_lattice_tolerance (relative) or more, the
   // lattice doubles its cells (cells per wavelength and reference_sun_cells times sqrt 2) up to
   // reference_max_cells_per_wavelength (below reference_cells_per_wavelength: no doubling). Its
-  // cap grows with it up to reference_max_sun_cells and is held there while the
+  // cap grows with it up to reference_max_sun_cells (at least reference_sun_cells) and is held
+  // there while the
   // cells per wavelength go on doubling: the footprints past the held cap, which a finer lattice
   // no longer resolves, drop out of the comparison (ReferenceSampling::
   // sun_max_cells_per_wavelength and sun_max_cells; the limits in ocean/method.hpp).
   double reference_max_cells_per_wavelength = 0.0;
-  int reference_max_sun_cells = kReferenceMaxSunCells;
+  int reference_max_sun_cells = kReferenceHeldSunCells;
   double reference_lattice_tolerance = 0.01;
   // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
   // (ReferenceSampling::sun_float_atomics), else compare-and-swap.
