@@ -568,6 +568,8 @@ void main() {
   const vec4 cells = footprints[3u * footprint + 2u];
   const int kx = int(cells.x), ky = int(cells.y);
   if (ky < 1) return;
+  // Consecutive invocations take consecutive rows of one segment: the SIMD lanes of a work group
+  // (llvmpipe runs 8 in lockstep) are then active or idle together.
   const uint local_id = id - footprint_starts[footprint];
   const int j = int(local_id % uint(ky));
   const int first = int(local_id / uint(ky)) * segment_cells;

@@ -36,10 +36,10 @@ enum class OceanMethod {
 // the row below the horizon's, which needs 8.9e7 (the horizon's row, 1.7e9, stays out of reach:
 // docs/validation.md, "Footprints cut by their cells"); a footprint's invocations (at most one
 // per cell) then fit one batch of the shader's 32-bit index, and each side's cells (at most
-// 333,000 on the horizon's row) a float's whole numbers. The cap grows with the cells as the lattice doubles
-// (times sqrt 2 each doubling) up to sun_max_cells, kReferenceHeldSunCells by default: the
-// default suite's 2,048 is held there, and a reference that must double gives up the far rows
-// its finer cells no longer fit rather than doubling their cost.
+// 333,000 on the horizon's row) a float's whole numbers. The cap grows with the cells as the
+// lattice doubles (times sqrt 2 each doubling) up to sun_max_cells, kReferenceHeldSunCells by
+// default: the default suite's 2,048 is held there, and a reference that must double gives up
+// the far rows its finer cells no longer fit rather than doubling their cost.
 inline constexpr double kReferenceMaxCellsPerWavelength = 128.0;
 inline constexpr int kReferenceMaxSunCells = 16384;
 inline constexpr int kReferenceHeldSunCells = 2048;

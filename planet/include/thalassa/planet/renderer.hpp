@@ -132,7 +132,7 @@ struct LightTerms {
 enum class ReferenceSun {
   // Once per image: each pixel's footprint on the sea at rest is cut into a lattice of cells (at
   // most sun_cells^2 per footprint, in whatever shape it needs: the footprints near the horizon
-  // are thousands of cells along the view and tens across; sun_cells in [1, 2048]) and each
+  // are thousands of cells along the view and tens across; sun_cells in [1, 16384]) and each
   // cell's sun is added to the pixel that sees
   // its glint (shaders/ocean/reference_sun_scatter.comp). The same for every sample: the sun
   // adds no noise between sample counts, and its convergence is measured instead against a
@@ -212,7 +212,7 @@ struct ReferenceSampling {
   // Scattered: the most invocations per batch of the lattice's cells' pass (one per segment of a
   // row of a footprint's cells; whole footprints per batch, one alone where it has more), in
   // [1, 2^31]. The image does not depend on it (OceanMethods.ScatteredSunDoesNotDependOnItsBatches
-  // draws many small batches); the default makes one batch of every lattice the suite draws.
+  // draws many small batches); by default they are as large as the shader's 32-bit index allows.
   std::uint64_t sun_batch_invocations = ocean::kReferenceMaxSunBatch;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,

@@ -38,7 +38,7 @@ struct OceanNodeOptions {
   // The reference's sun (planet/renderer.hpp, ReferenceSun): with reference_sun_scatter (the
   // default), scattered once per image from a lattice of the sea
   // (shaders/ocean/reference_sun_scatter.comp), at most reference_sun_cells^2 cells per pixel's
-  // footprint in whatever shape, reference_sun_cells in [1, 2048]; without it, gathered per sample
+  // footprint in whatever shape, reference_sun_cells in [1, 16384]; without it, gathered per sample
   // (shaders/ocean/reference_sun.glsl), at most reference_sun_cells per side of a sample's pixel
   // stratum, [1, 64]. Either way each cell is at most the shortest wavelength /
   // reference_cells_per_wavelength wide ([1, 128]); a stratum or pixel whose footprint needs more
@@ -56,9 +56,8 @@ struct OceanNodeOptions {
   // lattice doubles its cells (cells per wavelength and reference_sun_cells times sqrt 2) up to
   // reference_max_cells_per_wavelength (below reference_cells_per_wavelength: no doubling). Its
   // cap grows with it up to reference_max_sun_cells (at least reference_sun_cells) and is held
-  // there while the
-  // cells per wavelength go on doubling: the footprints past the held cap, which a finer lattice
-  // no longer resolves, drop out of the comparison (ReferenceSampling::
+  // there while the cells per wavelength go on doubling: the footprints past the held cap, which a
+  // finer lattice no longer resolves, drop out of the comparison (ReferenceSampling::
   // sun_max_cells_per_wavelength and sun_max_cells; the limits in ocean/method.hpp).
   double reference_max_cells_per_wavelength = 0.0;
   int reference_max_sun_cells = kReferenceHeldSunCells;
