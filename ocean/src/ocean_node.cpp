@@ -140,6 +140,12 @@ constexpr GLuint kScatterFootprintBinding = 8;
 constexpr GLuint kScatterFootprintStartBinding = 9;
 constexpr GLuint kGridDepthUnit = 14;
 
+// Per image row (top first), the cells along x and y of a scattered lattice's footprint with the
+// most in that row (OceanNode::run_scatter).
+struct ScatterRowCells {
+  std::vector<double> x, y;
+};
+
 class OceanNode final : public gl::Node {
  public:
   explicit OceanNode(const OceanNodeOptions& options)
@@ -362,9 +368,9 @@ class OceanNode final : public gl::Node {
     std::vector<std::pair<std::string, std::vector<double>>> rows;
     if (!lattice_row_changes_.empty())
       rows.emplace_back("reference_sun.lattice_row_changes", lattice_row_changes_);
-    if (!lattice_row_cells_x_.empty()) {
-      rows.emplace_back("reference_sun.row_cells_x", lattice_row_cells_x_);
-      rows.emplace_back("reference_sun.row_cells_y", lattice_row_cells_y_);
+    if (!lattice_row_cells_.x.empty()) {
+      rows.emplace_back("reference_sun.row_cells_x", lattice_row_cells_.x);
+      rows.emplace_back("reference_sun.row_cells_y", lattice_row_cells_.y);
     }
     return rows;
   }
@@ -640,8 +646,7 @@ class OceanNode final : public gl::Node {
       lattice_row_change_ = 0.0;
       lattice_rows_ = 0;
       lattice_row_changes_.clear();
-      lattice_row_cells_x_.clear();
-      lattice_row_cells_y_.clear();
+      lattice_row_cells_ = {};
       scatter_margin_ = kept.margin;
       scatter_refine_ = kept.refine;
       hidden_fraction_ = kept.hidden_fraction;
@@ -772,8 +777,6 @@ class OceanNode final : public gl::Node {
     double finer_ms =
         run_scatter_timed(programs, reference_sun_buffer_.get(),
                           waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
-    lattice_row_cells_x_ = scatter_row_cells_x_;
-    lattice_row_cells_y_ = scatter_row_cells_y_;
     const bool measure = options_.reference_measure_lattice;
     if (measure)
       run_scatter(programs, coarse_sun_buffer_.get(),
@@ -802,8 +805,6 @@ class OceanNode final : public gl::Node {
       cap = finer_cap;
       finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
                                    waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
-      lattice_row_cells_x_ = scatter_row_cells_x_;
-      lattice_row_cells_y_ = scatter_row_cells_y_;
       ++lattice_doublings_;
     }
     lattice_cells_per_wavelength_ = cells_per_wavelength;
@@ -858,12 +859,13 @@ class OceanNode final : public gl::Node {
       }
   }
 
-  // run_scatter; with `timed`, waited for, and its wall-clock time (ms), else 0 (a lattice no
-  // cache keeps needs no time of its own, and the GPU may overlap it with the next).
+  // run_scatter of the finer lattice (its footprints' cells per row into lattice_row_cells_);
+  // with `timed`, waited for, and its wall-clock time (ms), else 0 (a lattice no cache keeps
+  // needs no time of its own, and the GPU may overlap it with the next).
   double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
                            int cap, bool timed) {
     const auto start = std::chrono::steady_clock::now();
-    run_scatter(programs, buffer, spacing, cap);
+    run_scatter(programs, buffer, spacing, cap, &lattice_row_cells_);
     if (!timed) return 0.0;
     glFinish();
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
@@ -871,8 +873,10 @@ class OceanNode final : public gl::Node {
   }
 
   // One lattice (spacing m, at most cap^2 cells per pixel's footprint) into buffer, cleared
-  // first: the footprints' pass (programs[0]), then the cells' (programs[1]).
-  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing, int cap) {
+  // first: the footprints' pass (programs[0]), then the cells' (programs[1]); with row_cells, the
+  // cells along x and y of each image row's footprint with the most into it.
+  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing, int cap,
+                   ScatterRowCells* row_cells = nullptr) {
     const float zero = 0.0f;
     glClearNamedBufferData(buffer, GL_R32F, GL_RED, GL_FLOAT, &zero);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kReferenceSunBinding, buffer);
@@ -906,10 +910,11 @@ class OceanNode final : public gl::Node {
     glGetNamedBufferSubData(footprint_buffer_.get(), 0,
                             static_cast<GLsizeiptr>(footprints.size() * sizeof(float)),
                             footprints.data());
-    // Per image row (top first), the cells along x and y of its footprint with the most.
     const int columns = scatter_width_ + 2 * scatter_margin_;
-    scatter_row_cells_x_.assign(scatter_height_, 0.0);
-    scatter_row_cells_y_.assign(scatter_height_, 0.0);
+    if (row_cells) {
+      row_cells->x.assign(scatter_height_, 0.0);
+      row_cells->y.assign(scatter_height_, 0.0);
+    }
     std::vector<GLuint> starts(footprint_count_);
     struct Batch {
       std::uint64_t first = 0, end = 0, invocations = 0;
@@ -924,11 +929,11 @@ class OceanNode final : public gl::Node {
       const std::uint64_t invocations = ky * ((kx + segment - 1) / segment);
       const int x = static_cast<int>(f % columns) - scatter_margin_;
       const int y = static_cast<int>(f / columns) - scatter_margin_;  // window row, from the bottom
-      if (x >= 0 && x < scatter_width_ && y >= 0 && y < scatter_height_) {
+      if (row_cells && x >= 0 && x < scatter_width_ && y >= 0 && y < scatter_height_) {
         const int row = scatter_height_ - 1 - y;
-        if (double(kx) * double(ky) > scatter_row_cells_x_[row] * scatter_row_cells_y_[row]) {
-          scatter_row_cells_x_[row] = double(kx);
-          scatter_row_cells_y_[row] = double(ky);
+        if (double(kx) * double(ky) > row_cells->x[row] * row_cells->y[row]) {
+          row_cells->x[row] = double(kx);
+          row_cells->y[row] = double(ky);
         }
       }
       // A new batch where this footprint would take the batch past its most (a footprint with
@@ -1093,11 +1098,9 @@ class OceanNode final : public gl::Node {
   // relative change measured in it; NaN where none was (a row the coarser lattice leaves
   // unresolved, or below kScatterNegligibleRow of the brightest).
   std::vector<double> lattice_row_changes_;
-  // Per image row (top first), the cells along x and y of the footprint with the most, in the
-  // last lattice run_scatter drew (scatter_) and in the finer lattice (lattice_; empty when the
-  // lattice was kept, ScatteredSunCache).
-  std::vector<double> scatter_row_cells_x_, scatter_row_cells_y_;
-  std::vector<double> lattice_row_cells_x_, lattice_row_cells_y_;
+  // Per image row (top first), the cells along x and y of the finer lattice's footprint with the
+  // most (empty when the lattice was kept, ScatteredSunCache).
+  ScatterRowCells lattice_row_cells_;
   int lattice_rows_ = 0;  // the rows it was measured on
   // The finer lattice as run (after lattice_doublings_ doublings of the options' lattice): its
   // cells per shortest wavelength and cap (at most cap^2 cells per pixel's footprint).
