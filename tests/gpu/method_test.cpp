@@ -192,65 +192,115 @@ TEST(OceanMethods, BasicIsFullWhereTheForegroundResolvesNothing) {
   EXPECT_GT(difference, 0.01 * total);
 }
 
-// Fig. 10's claim, on the rows where the reference's sun is resolved: beyond 100 m the full
-// method's sun is closer to the reference than the basic method's. The sea keeps waves of 1 m and
-// longer (ocean.lambda_min), so that the reference's sun, scattered from a lattice of the sea
-// (shaders/ocean/reference_sun_scatter.comp), resolves every wave across most of the image at 8
-// cells per shortest wavelength; the camera at 100 m sees the sea from 120 m to 560 m. Bands of
-// 4 rows (the glint of one sea is sparse: a single row's total follows its few facets). At 64 x 40
-// the reference resolves every row (rows 4-39 until stop 34, when each footprint's cap became
-// 256^2 cells in any shape instead of 256 per side); measured: the full method within 0.9-30 % of
-// every band (mean 9.0 %), the basic one 98 %, 93 %, 78 % and 60 % low in the four farthest
-// (mean 35 %; 30 % over rows 4-39).
+// Fig. 10's claim on the rows where the reference's sun is resolved, over bands of 4 rows: the
+// full method's sun is closer to the reference than the basic method's. The reference at 8 cells
+// per shortest wavelength (half the suite's, for time: on the 8 km view below 16 moves the far
+// band by 3.5 % and no other by 1.4 %), at most 256^2 per pixel, must resolve every row of
+// `scene` (64 x 40).
+// Each band's total is summed over the seas of `seeds` (ocean.seed): the full and basic methods
+// draw the expected glint of their BRDFs, the reference the glints of one sea, and a band that
+// holds a handful of glints (far rows where the mirror slope is 3 or 4 standard deviations out,
+// or the foreground) is the luck of that sea as much as the method's (docs/validation.md, stop
+// 35). Returns the mean deviations from the reference over the bands, full and basic, and counts
+// the bands where the two methods disagree by more than 30 % of the reference: there the full
+// method must be the closer.
+struct BandDeviations {
+  double full = 0.0, basic = 0.0;
+  int bands = 0, decisive = 0;
+};
+BandDeviations full_and_basic_against_reference(GlContext& context, Scene scene,
+                                                const std::vector<std::uint32_t>& seeds) {
+  const LightTerms sun{true, false, false, false};
+  const int band_count = scene.image.height / 4;
+  std::vector<double> reference_bands(band_count, 0.0), full_bands(band_count, 0.0),
+      basic_bands(band_count, 0.0);
+  std::vector<bool> resolved(band_count, true);
+  auto add_bands = [&](const Image& image, std::vector<double>& bands) {
+    for (int y = 0; y < 4 * band_count; ++y)
+      for (int x = 0; x < image.width; ++x)
+        bands[y / 4] += image.rgba[(std::size_t(y) * image.width + x) * 4 + 1];
+  };
+  for (const std::uint32_t seed : seeds) {
+    scene.ocean.seed = seed;
+    const Render reference = render(context, scene, ocean::OceanMethod::reference, sun, 8, 8);
+    EXPECT_EQ(reference.stats.resolved_rows.size(), std::size_t(scene.image.height));
+    for (int y = 0; y < 4 * band_count; ++y)
+      if (!(y < int(reference.stats.resolved_rows.size()) &&
+            reference.stats.resolved_rows[y] >= 0.99))
+        resolved[y / 4] = false;
+    add_bands(reference.image, reference_bands);
+    add_bands(render(context, scene, ocean::OceanMethod::full, sun).image, full_bands);
+    add_bands(render(context, scene, ocean::OceanMethod::basic, sun).image, basic_bands);
+  }
+  BandDeviations d;
+  for (int band = 0; band < band_count; ++band) {
+    if (!resolved[band]) continue;
+    const double r = reference_bands[band];
+    EXPECT_GT(r, 0.0) << "rows " << 4 * band << "-" << 4 * band + 3;
+    if (!(r > 0.0)) continue;
+    const double f = full_bands[band] / r - 1.0;
+    const double b = basic_bands[band] / r - 1.0;
+    std::printf("rows %2d-%2d: full %+.3f, basic %+.3f of the reference\n", 4 * band, 4 * band + 3,
+                f, b);
+    d.full += std::abs(f);
+    d.basic += std::abs(b);
+    ++d.bands;
+    if (std::abs(f - b) > 0.3) {
+      ++d.decisive;
+      EXPECT_LT(std::abs(f), std::abs(b)) << "rows " << 4 * band << "-" << 4 * band + 3;
+    }
+  }
+  if (d.bands > 0) {
+    d.full /= d.bands;
+    d.basic /= d.bands;
+  }
+  std::printf(
+      "%d resolved bands (%d decisive) over %zu seas: mean deviation full %.3f, basic "
+      "%.3f\n",
+      d.bands, d.decisive, seeds.size(), d.full, d.basic);
+  return d;
+}
+
+// At 100 m, one sea. It keeps waves of 1 m and longer (ocean.lambda_min), so that the
+// reference's sun, scattered from a lattice of the sea (shaders/ocean/reference_sun_scatter.comp),
+// resolves every wave across the image at 8 cells per shortest wavelength; the camera sees the
+// sea from 120 m to 560 m. At 64 x 40 the reference resolves every row (rows 4-39 until stop 34,
+// when each footprint's cap became 256^2 cells in any shape instead of 256 per side); measured:
+// the full method within 0.9-30 % of every band (mean 9.0 %), the basic one 98 %, 93 %, 78 % and
+// 60 % low in the four farthest (mean 35 %).
 TEST(OceanMethods, FullIsCloserToTheReferenceThanBasicBeyond100m) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(100.0);
   scene.image.width = 64;
   scene.image.height = 40;
   scene.ocean.lambda_min = 1.0;
-  const LightTerms sun{true, false, false, false};
-  // 8 cells per shortest wavelength, at most 256^2 per pixel (the default's 16 resolved only
-  // rows 12-39 at 256 per side, and no more than 8 separate the methods there; docs/validation.md
-  // measures what the coarser lattice moves).
-  const Render reference = render(*context, scene, ocean::OceanMethod::reference, sun, 8, 8);
-  const Render full = render(*context, scene, ocean::OceanMethod::full, sun);
-  const Render basic = render(*context, scene, ocean::OceanMethod::basic, sun);
-  ASSERT_EQ(reference.stats.resolved_rows.size(), std::size_t(scene.image.height));
-  auto band_total = [&](const Image& image, int y0) {
-    double total = 0.0;
-    for (int y = y0; y < y0 + 4; ++y)
-      for (int x = 0; x < image.width; ++x)
-        total += image.rgba[(std::size_t(y) * image.width + x) * 4 + 1];
-    return total;
-  };
-  double full_sum = 0.0, basic_sum = 0.0;
-  int bands = 0, decisive = 0;
-  for (int y0 = 0; y0 + 4 <= scene.image.height; y0 += 4) {
-    bool resolved = true;
-    for (int y = y0; y < y0 + 4; ++y) resolved &= reference.stats.resolved_rows[y] >= 0.99;
-    if (!resolved) continue;
-    const double r = band_total(reference.image, y0);
-    ASSERT_GT(r, 0.0);
-    const double f = std::abs(band_total(full.image, y0) / r - 1.0);
-    const double b = std::abs(band_total(basic.image, y0) / r - 1.0);
-    std::printf("rows %2d-%2d: full %+.3f, basic %+.3f of the reference\n", y0, y0 + 3,
-                band_total(full.image, y0) / r - 1.0, band_total(basic.image, y0) / r - 1.0);
-    full_sum += f;
-    basic_sum += b;
-    ++bands;
-    // Where the two methods disagree by more than the reference's own band-to-band noise, the
-    // full method must be the one closer to it.
-    if (std::abs(band_total(full.image, y0) - band_total(basic.image, y0)) > 0.3 * r) {
-      ++decisive;
-      EXPECT_LT(f, b) << "rows " << y0 << "-" << y0 + 3;
-    }
-  }
-  std::printf("%d resolved bands (%d decisive): mean deviation full %.3f, basic %.3f\n", bands,
-              decisive, full_sum / bands, basic_sum / bands);
-  EXPECT_GE(bands, 5);
-  EXPECT_GE(decisive, 1);
+  const BandDeviations d = full_and_basic_against_reference(*context, scene, {scene.ocean.seed});
+  EXPECT_GE(d.bands, 5);
+  EXPECT_GE(d.decisive, 1);
   // Measured: mean deviation 0.090 (full) against 0.350 (basic), a ratio of 0.26.
-  EXPECT_LT(full_sum, 0.8 * basic_sum);
+  EXPECT_LT(d.full, 0.8 * d.basic);
+}
+
+// At 1 km: the view of the 100 m test scaled by 10, waves of 10 to 300 m on a sea of 20 m/s
+// (peak 333 m), four seas (seeds 1-4). Measured: mean deviation 0.048 (full) against 0.352
+// (basic); seed 1 alone 0.099 / 0.381. At 8 km (the view scaled by 80, waves of 80 m to 2.4 km)
+// the two methods differ only in the three farthest bands, where the mirror slope is 3.4 to 3.9
+// standard deviations out and the reference's band holds one to three glints: seed 1 alone puts
+// the full method 2.1 times above the reference there (0.40 / 0.29), seeds 1-8 together 0.059 /
+// 0.107, seeds 1-4 0.135 / 0.108 and 5-8 0.077 / 0.121. Eight seas cost two more minutes than
+// this test takes, so the 8 km claim is measured in docs/validation.md (stop 35), not here.
+TEST(OceanMethods, FullIsCloserToTheReferenceThanBasicAt1km) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(1000.0);
+  scene.image.width = 64;
+  scene.image.height = 40;
+  scene.ocean.wind_speed = 20.0;
+  scene.ocean.lambda_min = 10.0;
+  scene.ocean.lambda_max = 300.0;
+  const BandDeviations d = full_and_basic_against_reference(*context, scene, {1, 2, 3, 4});
+  EXPECT_GE(d.bands, 5);
+  EXPECT_GE(d.decisive, 1);
+  EXPECT_LT(d.full, 0.8 * d.basic);
 }
 
 // Each image row's total (green), top first.
