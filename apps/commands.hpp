@@ -82,6 +82,8 @@ struct ValidateArgs {
   int reference_sun_cells = 0;
   // --resume: keep the cases of the report already in `dir` that were run with the same inputs.
   bool resume = false;
+  // --seas: each selected case drawn over this many seas (validation::expand_seas); 1: once.
+  int seas = 1;
 };
 
 struct InfoArgs {

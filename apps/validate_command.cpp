@@ -471,6 +471,14 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
                    "below the horizon, 2048, the default suite's, from 3 degrees, 16384 from "
                    "the row below the horizon's, at many times the cost)")
       ->check(CLI::Range(1, ocean::kReferenceMaxSunCells));
+  validate
+      ->add_option("--seas", args.seas,
+                   "Draw each selected case over this many seas, its ocean.seed and the next "
+                   "ones (cases NAME_sea1 to NAME_seaN), and sum each row's totals over them "
+                   "(seas.csv, index.html): the reference draws one sea's glints and the other "
+                   "methods the expected glint of their BRDFs, so rows of few glints compare a "
+                   "sea's luck unless the seas are summed")
+      ->check(CLI::Range(1, validation::kMaxSeas));
   validate->add_flag("--resume", args.resume,
                      "Keep the cases of the report already in the output folder that were run "
                      "with the same inputs (scene, methods, settings, program and renderer), and "
@@ -535,6 +543,13 @@ int run_validate(const ValidateArgs& args) {
         args.suite.empty() ? validation::default_suite() : validation::load_suite_file(args.suite);
     selected = select_cases(suite, args.cases);
     validation::narrow_suite(suite, args.methods, args.terms);
+    if (args.seas > 1) {
+      // The seas of each case, selected as the case was.
+      const std::vector<std::size_t> origin = validation::expand_seas(suite, args.seas);
+      std::vector<bool> seas_selected;
+      for (std::size_t i : origin) seas_selected.push_back(selected[i]);
+      selected = std::move(seas_selected);
+    }
     if (args.reference_samples > 0) {
       // The terms with the sun take N; those without keep their own cap where it is larger.
       validation::ReferenceSettings& reference = suite.reference;
@@ -644,6 +659,8 @@ int run_validate(const ValidateArgs& args) {
     } else {
       results[i] = runner.run(c);
       results[i]->fingerprint = fingerprints[i];
+      results[i]->sea_of = c.sea_of;
+      results[i]->sea = c.sea;
     }
     ++run;
     if (!results[i]->passed()) {

@@ -510,15 +510,46 @@ TEST_F(Cli, ValidateMeasuresASeaChangingVariantAgainstItsOwnReference) {
             std::string::npos);
 }
 
+// --seas N draws each selected case over N seas (its ocean.seed and the next ones), as cases of
+// their own, and the report sums their rows (seas.csv; validation::summarize_seas).
+TEST_F(Cli, ValidateDrawsTheSelectedCasesOverTheirSeas) {
+  write("seas.json", R"({
+    "suite": "seas",
+    "base": {"image.width": 16, "image.height": 10, "camera.height": 100, "camera.pitch": -20},
+    "methods": ["reference", "basic", "full"],
+    "terms": ["sun"],
+    "flicker": {"frames": 0, "terms": ["sun"]},
+    "reference": {"pixel_samples": 4, "sun_normal_samples": 256},
+    "cases": [{"name": "near", "set": {"ocean.seed": 5}}, {"name": "far", "set": {}}]
+  })");
+  const Result r = run("validate seas.json -o report --seas 2 --case near");
+  ASSERT_EQ(r.status, 0) << r.err;
+  std::ifstream in(dir_ / "report" / "results.json");
+  const auto results = nlohmann::json::parse(in);
+  ASSERT_EQ(results["cases"].size(), 2u);
+  EXPECT_EQ(results["suite_cases"], 4);
+  for (int k = 0; k < 2; ++k) {
+    const auto& c = results["cases"][k];
+    EXPECT_EQ(c["name"], "near_sea" + std::to_string(k + 1));
+    EXPECT_EQ(c["sea_of"], "near");
+    EXPECT_EQ(c["sea"], k + 1);
+    EXPECT_EQ(c["set"]["ocean.seed"], 5 + k);
+  }
+  std::ifstream csv(dir_ / "report" / "seas.csv");
+  const std::string text{std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>()};
+  EXPECT_NE(text.find("\nnear,basic,sun,2,"), std::string::npos) << text;
+  EXPECT_NE(text.find("\nnear,full,sun,2,"), std::string::npos) << text;
+}
+
 TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {
   write("bad.json", R"({"suite": "bad", "cases": [{"name": "x", "set": {"camera.hieght": 4}}]})");
   expect_invalid(run("validate bad.json -o out"), {"bad.json", "camera.hieght"});
   // An option out of its range: CLI11's message (and its "Run with --help" line), status 2.
   // Past ocean/method.hpp's limits too.
-  for (const std::string& past :
-       std::vector<std::string>{"--reference-samples 0", "--reference-samples 16385",
-                                "--reference-sun-max-cells-per-wavelength 129",
-                                "--reference-sun-cells 0", "--reference-sun-cells 16385"}) {
+  for (const std::string& past : std::vector<std::string>{
+           "--reference-samples 0", "--reference-samples 16385",
+           "--reference-sun-max-cells-per-wavelength 129", "--reference-sun-cells 0",
+           "--reference-sun-cells 16385", "--seas 0", "--seas 65"}) {
     const Result range = run("validate -o out " + past);
     EXPECT_EQ(range.status, 2) << range.err;
     EXPECT_NE(range.err.find(past.substr(0, past.find(' '))), std::string::npos) << range.err;

@@ -119,6 +119,75 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples"}));
 }
 
+// thalassa validate --seas N: each case expected to render becomes N cases NAME_sea1 to NAME_seaN
+// whose ocean.seed runs from the case's own, which win over the case's and the base's seed; a
+// case expected to fail stays; 1 changes nothing; N outside [1, kMaxSeas], a seed past 2^32 - 1
+// and a name another case has are refused.
+TEST(ValidationSuite, SeasAreTheCaseOverItsSeedAndTheNextOnes) {
+  const std::string text = R"({
+    "suite": "s", "base": {"image.width": 16, "image.height": 8, "ocean.seed": 3},
+    "cases": [
+      {"name": "calm", "description": "a calm sea", "set": {"ocean.wind_speed": 3}},
+      {"name": "seeded", "set": {"ocean.seed": 7}},
+      {"name": "bad", "set": {"camera.lat": 90.5}, "expect": 2, "error": "camera.lat"}]})";
+  Suite suite = load_suite_text(text, "s.json");
+  Suite same = suite;
+  EXPECT_EQ(expand_seas(same, 1), (std::vector<std::size_t>{0, 1, 2}));
+  EXPECT_EQ(same.cases.size(), 3u);
+  const std::vector<std::size_t> origin = expand_seas(suite, 3);
+  EXPECT_EQ(origin, (std::vector<std::size_t>{0, 0, 0, 1, 1, 1, 2}));
+  ASSERT_EQ(suite.cases.size(), 7u);
+  const std::uint32_t seeds[] = {3, 4, 5, 7, 8, 9};
+  std::set<std::string> fingerprints;
+  for (int i = 0; i < 6; ++i) {
+    const SuiteCase& c = suite.cases[i];
+    const std::string of = i < 3 ? "calm" : "seeded";
+    EXPECT_EQ(c.name, of + "_sea" + std::to_string(i % 3 + 1));
+    EXPECT_EQ(c.sea_of, of);
+    EXPECT_EQ(c.sea, i % 3 + 1);
+    const Scene scene = case_scene(suite, c);
+    EXPECT_EQ(scene.ocean.seed, seeds[i]) << c.name;
+    if (i < 3) {
+      EXPECT_EQ(scene.ocean.wind_speed, 3.0);  // the case's own overrides stay
+    }
+    EXPECT_NE(c.description.find("sea " + std::to_string(i % 3 + 1) + " of 3 (ocean.seed " +
+                                 std::to_string(seeds[i]) + ")"),
+              std::string::npos)
+        << c.description;
+    fingerprints.insert(case_fingerprint(suite, c, "env"));
+  }
+  EXPECT_EQ(fingerprints.size(), 6u);  // each sea is its own case for --resume
+  EXPECT_EQ(suite.cases[0].description.rfind("a calm sea; ", 0), 0u);
+  EXPECT_EQ(suite.cases[6].name, "bad");
+  EXPECT_EQ(suite.cases[6].sea_of, "");
+  const auto refused = [&](const std::string& json, int seas) {
+    Suite s = load_suite_text(json, "s.json");
+    try {
+      expand_seas(s, seas);
+    } catch (const SuiteError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refused(text, 0).find("--seas: expected a number of seas in [1, 64], got 0"),
+            std::string::npos);
+  EXPECT_NE(refused(text, kMaxSeas + 1).find("got 65"), std::string::npos);
+  EXPECT_NE(
+      refused(R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.seed": 4294967295}}]})", 2)
+          .find("--seas: case a: expected its ocean.seed plus 1 within 4294967295"),
+      std::string::npos);
+  EXPECT_EQ(
+      refused(R"({"suite": "s", "cases": [{"name": "a", "set": {"ocean.seed": 4294967295}}]})", 1),
+      "");
+  // A case expected to fail keeps its name, which a sea of another may take.
+  EXPECT_NE(refused(R"({"suite": "s", "cases": [{"name": "a", "set": {}},
+                    {"name": "a_sea2", "set": {"camera.lat": 91}, "expect": 2,
+                     "error": "camera.lat"}]})",
+                    2)
+                .find("got a second case \"a_sea2\""),
+            std::string::npos);
+}
+
 // data/suites/fig10_seas.json (stop 35, scripts/fig10_seas): three views, each over seeds 1-8 and
 // nothing else changed between them, the first the view of tests/gpu/method_test.cpp's
 // OceanMethods.FullIsCloserToTheReferenceThanBasicAt1km and the reference's sun as those tests

@@ -723,6 +723,16 @@ std::string convergence_csv(const Report& report) {
   return csv;
 }
 
+std::string seas_csv(const Report& report) {
+  std::string csv = csv_line(
+      {"case", "method", "term", "seas", "rows", "row_error", "basic_row_error", "closer_alone"});
+  for (const SeaLine& l : summarize_seas(report))
+    csv += csv_line({l.case_name, l.method, l.term, std::to_string(l.seas), std::to_string(l.rows),
+                     number(l.row_error), number(l.basic_row_error),
+                     l.closer_alone < 0 ? "" : std::to_string(l.closer_alone)});
+  return csv;
+}
+
 std::string claim_csv(const Report& report) {
   std::string csv = csv_line({"case", "camera_height_m", "term", "full_row_error",
                               "basic_row_error", "reference_uncertainty", "verdict"});
@@ -786,6 +796,27 @@ std::string summary_html(const Report& report,
            html(l.term) + "</td><td>" + short_number(l.full) + "</td><td>" + short_number(l.basic) +
            "</td><td>" + short_number(l.uncertainty) + "</td><td" +
            (l.verdict() == "farther" ? " class=\"fail\">" : ">") + l.verdict() + "</td></tr>\n";
+    h += "</table>\n";
+  }
+  const std::vector<SeaLine> seas = summarize_seas(report);
+  if (!seas.empty()) {
+    h += "<h2>Over the seas</h2>\n<p>Per case drawn over several seas (<code>thalassa validate "
+         "--seas</code>; <a href=\"seas.csv\">seas.csv</a>), method and term: each row's total "
+         "summed over the seas, the method's and its reference's, on the rows every sea "
+         "compares, and the row error of the sums; beside it the basic method's over the same "
+         "seas and rows, and in how many seas alone the method's own row error is the smaller. "
+         "The reference draws one sea's glints, the methods the expected glint of their BRDFs: "
+         "where a row holds few glints, one sea is its luck, and the sum over seas measures the "
+         "method.</p>\n<table><tr><th>case</th><th>method</th><th>term</th><th>seas</th>"
+         "<th>rows</th><th>row error</th><th>basic's</th><th>closer alone</th></tr>\n";
+    for (const SeaLine& l : seas)
+      h += "<tr><td class=\"t\">" + html(l.case_name) + "</td><td class=\"t\">" + html(l.method) +
+           "</td><td class=\"t\">" + html(l.term) + "</td><td>" + std::to_string(l.seas) +
+           "</td><td>" + std::to_string(l.rows) + "</td><td>" + short_number(l.row_error) +
+           "</td><td>" + short_number(l.basic_row_error) + "</td><td>" +
+           (l.closer_alone < 0 ? std::string()
+                               : std::to_string(l.closer_alone) + " of " + std::to_string(l.seas)) +
+           "</td></tr>\n";
     h += "</table>\n";
   }
   h += "<p>";
@@ -1053,6 +1084,96 @@ std::vector<SummaryLine> summarize(const Report& report) {
   return lines;
 }
 
+namespace {
+// A method's row totals (luminance) and its reference's, summed over seas, and which rows every
+// sea compares (ratios: 1 there, NaN elsewhere, as row_error reads them).
+struct SummedRows {
+  std::vector<ChannelValues> method, reference, ratios;
+  int seas = 0;
+  std::vector<double> own_row_errors;  // each sea's TermMetrics::row_error, in the seas' order
+};
+
+// Over the cases of `seas` that measured `method`'s `term` against its reference (the case's, or
+// the variant's own: measured_against).
+SummedRows summed_rows(const std::vector<const CaseResult*>& seas, const std::string& method,
+                       const std::string& term) {
+  SummedRows sums;
+  for (const CaseResult* c : seas) {
+    const MethodResult* m = method_named(*c, method);
+    if (!m) continue;
+    const MethodResult* reference = measured_against(*c, *m);
+    const TermResult* t = term_of(*m, term);
+    const TermResult* r = reference ? term_of(*reference, term) : nullptr;
+    if (!t || !r || !measured(*t) || !measured(*r)) continue;
+    const std::size_t rows = t->metrics.row_totals.size();
+    if (r->metrics.row_totals.size() != rows || t->metrics.row_ratios.size() != rows) continue;
+    if (sums.seas == 0) {
+      sums.method.assign(rows, ChannelValues{});
+      sums.reference.assign(rows, ChannelValues{});
+      sums.ratios.assign(rows, ChannelValues{1.0, 1.0, 1.0, 1.0});
+    } else if (sums.ratios.size() != rows) {
+      continue;  // another image size: not the same view
+    }
+    for (std::size_t y = 0; y < rows; ++y) {
+      if (!std::isfinite(t->metrics.row_ratios[y].l)) sums.ratios[y].l = kNaN;
+      if (!std::isfinite(sums.ratios[y].l)) continue;
+      sums.method[y].l += t->metrics.row_totals[y].l;
+      sums.reference[y].l += r->metrics.row_totals[y].l;
+    }
+    sums.own_row_errors.push_back(t->metrics.row_error);
+    ++sums.seas;
+  }
+  return sums;
+}
+}  // namespace
+
+std::vector<SeaLine> summarize_seas(const Report& report) {
+  std::vector<std::string> groups;  // the cases the seas are of, first seen first
+  for (const CaseResult& c : report.cases)
+    if (!c.sea_of.empty() && std::find(groups.begin(), groups.end(), c.sea_of) == groups.end())
+      groups.push_back(c.sea_of);
+  std::vector<SeaLine> lines;
+  for (const std::string& group : groups) {
+    std::vector<const CaseResult*> seas;
+    for (const CaseResult& c : report.cases)
+      if (c.sea_of == group && c.passed() && !c.methods.empty()) seas.push_back(&c);
+    std::vector<std::pair<std::string, std::string>> keys;  // (method, term), first seen first
+    for (const CaseResult* c : seas)
+      for (const MethodResult& m : c->methods) {
+        if (m.method == "reference") continue;
+        for (const TermResult& t : m.terms) {
+          const std::pair<std::string, std::string> key{m.name, t.term};
+          if (measured(t) && std::find(keys.begin(), keys.end(), key) == keys.end())
+            keys.push_back(key);
+        }
+      }
+    for (const auto& [method, term] : keys) {
+      SummedRows sums = summed_rows(seas, method, term);
+      if (sums.seas == 0) continue;
+      SeaLine line{.case_name = group, .method = method, .term = term, .seas = sums.seas};
+      // The basic method beside it, on the seas and rows both have, where both are measured
+      // against the case's reference (a variant with its own reference is another sea).
+      const MethodResult* first = method_named(*seas.front(), method);
+      const bool own_reference = first && !first->reference.empty();
+      if (method != "basic" && !own_reference) {
+        const SummedRows basic = summed_rows(seas, "basic", term);
+        if (basic.seas == sums.seas && basic.ratios.size() == sums.ratios.size()) {
+          for (std::size_t y = 0; y < sums.ratios.size(); ++y)
+            if (!std::isfinite(basic.ratios[y].l)) sums.ratios[y].l = kNaN;
+          line.basic_row_error = row_error(basic.method, basic.reference, sums.ratios);
+          line.closer_alone = 0;
+          for (std::size_t k = 0; k < sums.own_row_errors.size(); ++k)
+            line.closer_alone += sums.own_row_errors[k] < basic.own_row_errors[k] ? 1 : 0;
+        }
+      }
+      line.row_error = row_error(sums.method, sums.reference, sums.ratios);
+      for (const ChannelValues& r : sums.ratios) line.rows += std::isfinite(r.l) ? 1 : 0;
+      lines.push_back(line);
+    }
+  }
+  return lines;
+}
+
 std::string ClaimLine::verdict() const {
   if (!std::isfinite(full) || !std::isfinite(basic)) return "undefined";
   if (same()) return "same";
@@ -1199,6 +1320,10 @@ std::string report_json(const Report& report) {
     jc["camera_height"] = c.camera_height;
     if (!c.fingerprint.empty()) jc["fingerprint"] = c.fingerprint;
     if (c.seconds) jc["seconds"] = *c.seconds;
+    if (!c.sea_of.empty()) {
+      jc["sea_of"] = c.sea_of;
+      jc["sea"] = c.sea;
+    }
     if (c.timing.enabled())
       jc["timing"] = {
           {"width", c.timing.width}, {"height", c.timing.height}, {"frames", c.timing.frames}};
@@ -1320,6 +1445,8 @@ Report report_from_json(const std::string& json_text) {
     c.camera_height = get_number(jc.at("camera_height"));
     c.fingerprint = jc.value("fingerprint", std::string());
     c.seconds = optional_from(jc, "seconds");
+    c.sea_of = jc.value("sea_of", std::string());
+    c.sea = jc.value("sea", 0);
     std::vector<std::pair<std::size_t, std::size_t>> without_row_error;  // (method, term)
     if (jc.contains("timing")) c.timing = timing_from(jc.at("timing"));
     for (const ojson& jm : jc.at("methods")) {
@@ -1472,6 +1599,7 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
   text("summary.csv", summary_csv(report));
   text("claim.csv", claim_csv(report));
   text("convergence.csv", convergence_csv(report));
+  text("seas.csv", seas_csv(report));
   text("index.html", index_html(report, plot_links, summary_links));
   return written;
 }

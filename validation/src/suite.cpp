@@ -6,7 +6,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "strict_json.hpp"
 #include "thalassa/ocean/method.hpp"
@@ -548,6 +550,51 @@ void narrow_suite(Suite& suite, const std::vector<std::string>& methods,
     std::erase_if(suite.terms, [&](const std::string& t) { return !listed(terms, t); });
     std::erase_if(suite.flicker.terms, [&](const std::string& t) { return !listed(terms, t); });
   }
+}
+
+std::vector<std::size_t> expand_seas(Suite& suite, int seas) {
+  if (seas < 1 || seas > kMaxSeas)
+    throw SuiteError("--seas: expected a number of seas in [1, " + std::to_string(kMaxSeas) +
+                     "], got " + std::to_string(seas));
+  std::vector<std::size_t> origin;
+  if (seas == 1) {
+    for (std::size_t i = 0; i < suite.cases.size(); ++i) origin.push_back(i);
+    return origin;
+  }
+  std::vector<SuiteCase> cases;
+  for (std::size_t i = 0; i < suite.cases.size(); ++i) {
+    const SuiteCase& c = suite.cases[i];
+    if (c.expected_exit != 0) {
+      cases.push_back(c);
+      origin.push_back(i);
+      continue;
+    }
+    const std::uint64_t first = case_scene(suite, c).ocean.seed;
+    if (first + std::uint64_t(seas) - 1 > std::numeric_limits<std::uint32_t>::max())
+      throw SuiteError("--seas: case " + c.name + ": expected its ocean.seed plus " +
+                       std::to_string(seas - 1) + " within 4294967295, got " +
+                       std::to_string(first + std::uint64_t(seas) - 1));
+    for (int k = 1; k <= seas; ++k) {
+      SuiteCase sea = c;
+      const std::uint64_t seed = first + std::uint64_t(k) - 1;
+      sea.name = c.name + "_sea" + std::to_string(k);
+      sea.description = (c.description.empty() ? "" : c.description + "; ") + "sea " +
+                        std::to_string(k) + " of " + std::to_string(seas) + " (ocean.seed " +
+                        std::to_string(seed) + ")";
+      sea.set.push_back({"ocean.seed", std::to_string(seed)});
+      sea.sea_of = c.name;
+      sea.sea = k;
+      cases.push_back(std::move(sea));
+      origin.push_back(i);
+    }
+  }
+  std::set<std::string> names;
+  for (const SuiteCase& c : cases)
+    if (!names.insert(c.name).second)
+      throw SuiteError("--seas: expected the seas' names to be new, got a second case \"" + c.name +
+                       "\" in " + suite.source);
+  suite.cases = std::move(cases);
+  return origin;
 }
 
 std::vector<std::string> case_assignments(const Suite& suite, const SuiteCase& c,

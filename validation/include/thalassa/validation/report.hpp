@@ -106,6 +106,10 @@ struct CaseResult {
   // The case's run, wall-clock s: its terms (TermResult::seconds) and its methods' timing. None
   // for a case refused before rendering, or in a report written before stop 28.
   std::optional<double> seconds;
+  // One of the seas of a case of the suite (SuiteCase::sea_of, sea; thalassa validate --seas):
+  // that case's name and which sea; "" and 0 otherwise.
+  std::string sea_of;
+  int sea = 0;
   // The case passed: it ended as expected (expected_exit, and expected_error in the message).
   bool passed() const;
 };
@@ -202,6 +206,29 @@ struct ClaimLine {
 };
 std::vector<ClaimLine> fig10_claim(const Report& report);
 
+// Over the seas of a case (thalassa validate --seas, CaseResult::sea_of), one line per method
+// or variant measured against a reference and per term, in the order first seen: fig. 10's
+// row totals summed over the seas. A row counts where every sea compares it (its ratio to the
+// reference defined in each); the row error (validation::row_error) is that of the method's
+// sums against its reference's. The reference draws one sea's glints and the methods the
+// expected glint of their BRDFs: a row of few glints is a realization's luck in one sea, and
+// the sum over seas is what measures the method there (docs/validation.md, "One sea's glints
+// and the BRDF's expected glint").
+struct SeaLine {
+  std::string case_name;  // the case the seas are of (CaseResult::sea_of)
+  std::string method;     // MethodResult::name
+  std::string term;
+  int seas = 0;  // the seas where the method's term was measured
+  int rows = 0;  // the rows every one of them compares
+  double row_error = std::numeric_limits<double>::quiet_NaN();  // of the sums (NaN: no row)
+  // The basic method's row error over the same seas and rows (NaN: the case has no basic, or
+  // no row), and in how many of the seas alone this method's own row error is the smaller
+  // (-1: no basic, or this is the basic method).
+  double basic_row_error = std::numeric_limits<double>::quiet_NaN();
+  int closer_alone = -1;
+};
+std::vector<SeaLine> summarize_seas(const Report& report);
+
 // A reference's relative uncertainty of each of its `rows` row totals for `term`: its
 // MethodResult::row_uncertainty, or in a report without it (before stop 23) the largest change
 // of its convergence tests for the term in every row; NaN where not measured (or no reference).
@@ -225,6 +252,7 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   plots/<case>_<term>_horizon.{dat,gp,png}   near-horizon mean and std (paper 004, fig. 5)
 //   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
 //   convergence.csv                            reference_convergence
+//   seas.csv                                   summarize_seas (its header alone without seas)
 //   plots/summary_<term>_height.{dat,gp,png}   row error against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,

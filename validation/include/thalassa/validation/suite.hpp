@@ -75,6 +75,10 @@ struct SuiteCase {
   // The names of the suite's methods this case is rendered with, in the suite's order (all of
   // them unless the case's `methods` lists some).
   std::vector<std::string> methods;
+  // One of the seas of another case (expand_seas): that case's name, and which sea (1 to the
+  // number of seas); "" and 0 for a case of the file.
+  std::string sea_of;
+  int sea = 0;
 };
 
 // Frames for the flicker metric: frame k of a case is its scene at time + k * dt.
@@ -187,6 +191,22 @@ std::string_view default_suite_json();
 // SuiteError naming the option: a misspelt name would otherwise run less than asked and pass.
 void narrow_suite(Suite& suite, const std::vector<std::string>& methods,
                   const std::vector<std::string>& terms);
+
+// The most seas `thalassa validate --seas` draws of a case.
+inline constexpr int kMaxSeas = 64;
+
+// Replaces each case that is expected to render (expected_exit 0) with `seas` cases, its seas, as
+// `thalassa validate --seas N` asks: the k-th (k = 1 to seas) is named NAME_seaK, sets
+// ocean.seed to the case's own seed + k - 1 after the case's overrides (another realization of
+// the same spectrum: the waves' directions and phases), and records sea_of = NAME, sea = k. The
+// reference draws one sea's glints and the other methods the expected glint of their BRDFs, so
+// rows that hold few glints compare a realization's luck unless the seas are summed
+// (summarize_seas in report.hpp; docs/validation.md, "One sea's glints and the BRDF's expected
+// glint"). A case expected to fail stays as it is, and seas = 1 leaves the suite unchanged.
+// Returns, for each case of the new list, the index of the case it came from in the old one.
+// Throws SuiteError (naming --seas) for seas outside [1, kMaxSeas], a seed past 2^32 - 1, or a
+// new name that another case already has.
+std::vector<std::size_t> expand_seas(Suite& suite, int seas);
 
 // The --set assignments of a case rendered with `method` (null: the case's own scene): the
 // suite's base, the case's set, then the method's set.
