@@ -682,20 +682,18 @@ TEST_F(ValidationReport, FailingGnuplotIsReportedWithItsOutput) {
 // Issue 6, point 1's verdict per reference and term: every test it has below 1 %; a sun term
 // needs its lattice measured; one test at or above 1 % fails it whatever the other says.
 // thalassa validate --seas: the seas of a case sum their rows before the row error, on the rows
-// every sea compares, beside the basic method's over the same rows and the count of seas alone
-// where the method is the closer; a case that is no sea adds no line; sea_of and sea read back.
+// every sea compares (a row the reference does not light in one sea among them), beside the
+// basic method's over the same rows and the count of seas alone where the method is the closer;
+// a case that is no sea adds no line; sea_of and sea read back.
 TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  // Per sea: the reference's, full's and basic's row totals (luminance) of 4 rows, the rows the
-  // sea compares, and full's and basic's own row errors.
+  // Per sea: the reference's, full's and basic's row totals (luminance) of 5 rows (NaN: not
+  // compared in that sea).
   struct Sea {
     std::vector<double> reference, full, basic;
-    std::vector<bool> compared;
-    double full_error, basic_error;
   };
-  const Sea seas[] = {
-      {{10, 20, 7, 40}, {12, 18, 7, 40}, {5, 30, 7, 20}, {true, true, false, true}, 0.1, 0.3},
-      {{30, 10, 5, 8}, {27, 11, 5, 9}, {40, 5, 2, 1}, {true, true, true, false}, 0.5, 0.2}};
+  const Sea seas[] = {{{10, 20, nan, 40, 0}, {12, 18, nan, 40, 3}, {5, 30, nan, 20, 1}},
+                      {{30, 10, 5, nan, 6}, {27, 11, 5, nan, 4}, {31, 10, 6, nan, 6}}};
   Report report = synthetic_report();  // its first case is no sea
   for (int k = 0; k < 2; ++k) {
     const Sea& sea = seas[k];
@@ -704,43 +702,44 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
     c.sea_of = "view";
     c.sea = k + 1;
     c.camera_height = 1000.0;
-    const auto method = [&](const char* name, const std::vector<double>& totals, double error) {
+    const auto method = [&](const char* name, const std::vector<double>& totals) {
       MethodResult m{name, name, true, {}, {}};
       TermResult t;
       t.term = "sun";
       for (std::size_t y = 0; y < totals.size(); ++y) {
         t.metrics.row_totals.push_back({totals[y], totals[y], totals[y], totals[y]});
-        const double ratio = sea.compared[y] ? totals[y] / sea.reference[y] : nan;
+        const double ratio = sea.reference[y] > 0.0 ? totals[y] / sea.reference[y] : nan;
         t.metrics.row_ratios.push_back({ratio, ratio, ratio, ratio});
       }
-      t.metrics.row_error = error;
-      t.frame_ms = 2.5 + error;  // what the error-against-time plot needs
-      t.metrics.error.relative_l1 = {error, error, error, error};
+      t.metrics.row_error = 0.25;  // not what the seas' line reads
+      t.frame_ms = 2.5;            // what the error-against-time plot needs
+      t.metrics.error.relative_l1 = {0.1, 0.1, 0.1, 0.1};
       m.terms.push_back(t);
       return m;
     };
-    c.methods.push_back(method("reference", sea.reference, 0.0));
-    c.methods.push_back(method("basic", sea.basic, sea.basic_error));
-    c.methods.push_back(method("full", sea.full, sea.full_error));
+    c.methods.push_back(method("reference", sea.reference));
+    c.methods.push_back(method("basic", sea.basic));
+    c.methods.push_back(method("full", sea.full));
     report.cases.push_back(c);
   }
-  // Rows 0 and 1 are compared in both seas: the reference's sums 40 and 30, full's 39 and 29,
-  // basic's 45 and 35.
+  // Rows 0, 1 and 4 are compared in both seas (row 4 unlit by sea 1's reference): the
+  // reference's sums 40, 30 and 6, full's 39, 29 and 7, basic's 36, 40 and 7. Alone, full's row
+  // errors are 7 / 30 and 6 / 46, basic's 16 / 30 and 1 / 46.
   const std::vector<SeaLine> lines = summarize_seas(report);
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0].case_name, "view");
   EXPECT_EQ(lines[0].method, "basic");
   EXPECT_EQ(lines[0].term, "sun");
   EXPECT_EQ(lines[0].seas, 2);
-  EXPECT_EQ(lines[0].rows, 2);
-  EXPECT_DOUBLE_EQ(lines[0].row_error, 10.0 / 70.0);
+  EXPECT_EQ(lines[0].rows, 3);
+  EXPECT_DOUBLE_EQ(lines[0].row_error, 15.0 / 76.0);
   EXPECT_TRUE(std::isnan(lines[0].basic_row_error));
   EXPECT_EQ(lines[0].closer_alone, -1);
   EXPECT_EQ(lines[1].method, "full");
-  EXPECT_EQ(lines[1].rows, 2);
-  EXPECT_DOUBLE_EQ(lines[1].row_error, 2.0 / 70.0);
-  EXPECT_DOUBLE_EQ(lines[1].basic_row_error, 10.0 / 70.0);
-  EXPECT_EQ(lines[1].closer_alone, 1);  // sea 1: 0.1 < 0.3; sea 2: 0.5 > 0.2
+  EXPECT_EQ(lines[1].rows, 3);
+  EXPECT_DOUBLE_EQ(lines[1].row_error, 3.0 / 76.0);
+  EXPECT_DOUBLE_EQ(lines[1].basic_row_error, 15.0 / 76.0);
+  EXPECT_EQ(lines[1].closer_alone, 1);
   // The files: seas.csv holds the lines, index.html their table, results.json the seas.
   write_report(report, dir_.string());
   const auto csv = parse_csv(read_text(dir_ / "seas.csv"));
@@ -749,7 +748,7 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
                                               "basic_row_error", "closer_alone"}));
   EXPECT_EQ(csv[2][0], "view");
   EXPECT_EQ(csv[2][1], "full");
-  EXPECT_EQ(csv_number(csv[2][5]), 2.0 / 70.0);
+  EXPECT_EQ(csv_number(csv[2][5]), 3.0 / 76.0);
   EXPECT_EQ(csv[2][7], "1");
   EXPECT_EQ(csv[1][7], "");
   EXPECT_NE(read_text(dir_ / "index.html").find("<h2>Over the seas</h2>"), std::string::npos);

@@ -1086,11 +1086,16 @@ std::vector<SummaryLine> summarize(const Report& report) {
 
 namespace {
 // A method's row totals (luminance) and its reference's, summed over seas, and which rows every
-// sea compares (ratios: 1 there, NaN elsewhere, as row_error reads them).
+// sea compares (ratios: 1 there, NaN elsewhere, as row_error reads them). A row counts where
+// each sea compares it (its totals defined), whether or not the reference has light there in
+// that sea: a row without a glint in one sea and with some in another is what the sum is for
+// (its ratio, and so its part of that sea's TermMetrics::row_error, is undefined where the
+// reference's total is 0).
 struct SummedRows {
   std::vector<ChannelValues> method, reference, ratios;
   int seas = 0;
-  std::vector<double> own_row_errors;  // each sea's TermMetrics::row_error, in the seas' order
+  // Each sea's own row error over the rows it compares, in the seas' order (NaN: none lit).
+  std::vector<double> own_row_errors;
 };
 
 // Over the cases of `seas` that measured `method`'s `term` against its reference (the case's, or
@@ -1105,22 +1110,28 @@ SummedRows summed_rows(const std::vector<const CaseResult*>& seas, const std::st
     const TermResult* t = term_of(*m, term);
     const TermResult* r = reference ? term_of(*reference, term) : nullptr;
     if (!t || !r || !measured(*t) || !measured(*r)) continue;
-    const std::size_t rows = t->metrics.row_totals.size();
-    if (r->metrics.row_totals.size() != rows || t->metrics.row_ratios.size() != rows) continue;
+    const std::vector<ChannelValues>& mt = t->metrics.row_totals;
+    const std::vector<ChannelValues>& rt = r->metrics.row_totals;
+    if (rt.size() != mt.size()) continue;
     if (sums.seas == 0) {
-      sums.method.assign(rows, ChannelValues{});
-      sums.reference.assign(rows, ChannelValues{});
-      sums.ratios.assign(rows, ChannelValues{1.0, 1.0, 1.0, 1.0});
-    } else if (sums.ratios.size() != rows) {
+      sums.method.assign(mt.size(), ChannelValues{});
+      sums.reference.assign(mt.size(), ChannelValues{});
+      sums.ratios.assign(mt.size(), ChannelValues{1.0, 1.0, 1.0, 1.0});
+    } else if (sums.ratios.size() != mt.size()) {
       continue;  // another image size: not the same view
     }
-    for (std::size_t y = 0; y < rows; ++y) {
-      if (!std::isfinite(t->metrics.row_ratios[y].l)) sums.ratios[y].l = kNaN;
-      if (!std::isfinite(sums.ratios[y].l)) continue;
-      sums.method[y].l += t->metrics.row_totals[y].l;
-      sums.reference[y].l += r->metrics.row_totals[y].l;
+    double error = 0.0, total = 0.0;
+    for (std::size_t y = 0; y < mt.size(); ++y) {
+      if (!std::isfinite(mt[y].l) || !std::isfinite(rt[y].l)) {
+        sums.ratios[y].l = kNaN;
+        continue;
+      }
+      error += std::abs(mt[y].l - rt[y].l);
+      total += rt[y].l;
+      sums.method[y].l += mt[y].l;
+      sums.reference[y].l += rt[y].l;
     }
-    sums.own_row_errors.push_back(t->metrics.row_error);
+    sums.own_row_errors.push_back(total > 0.0 ? error / total : kNaN);
     ++sums.seas;
   }
   return sums;

@@ -208,12 +208,13 @@ std::vector<ClaimLine> fig10_claim(const Report& report);
 
 // Over the seas of a case (thalassa validate --seas, CaseResult::sea_of), one line per method
 // or variant measured against a reference and per term, in the order first seen: fig. 10's
-// row totals summed over the seas. A row counts where every sea compares it (its ratio to the
-// reference defined in each); the row error (validation::row_error) is that of the method's
-// sums against its reference's. The reference draws one sea's glints and the methods the
-// expected glint of their BRDFs: a row of few glints is a realization's luck in one sea, and
-// the sum over seas is what measures the method there (docs/validation.md, "One sea's glints
-// and the BRDF's expected glint").
+// row totals summed over the seas. A row counts where every sea compares it (its row totals
+// defined in each, whether the reference lit it or not: a row with no glint in one sea and some
+// in another is what the sum is for); the row error (validation::row_error's sum |T_method -
+// T_reference| / sum T_reference) is that of the method's sums against its reference's. The
+// reference draws one sea's glints and the methods the expected glint of their BRDFs: a row of few
+// glints is a realization's luck in one sea, and the sum over seas is what measures the method
+// there (docs/validation.md, "One sea's glints and the BRDF's expected glint").
 struct SeaLine {
   std::string case_name;  // the case the seas are of (CaseResult::sea_of)
   std::string method;     // MethodResult::name
@@ -222,8 +223,8 @@ struct SeaLine {
   int rows = 0;  // the rows every one of them compares
   double row_error = std::numeric_limits<double>::quiet_NaN();  // of the sums (NaN: no row)
   // The basic method's row error over the same seas and rows (NaN: the case has no basic, or
-  // no row), and in how many of the seas alone this method's own row error is the smaller
-  // (-1: no basic, or this is the basic method).
+  // no row), and in how many of the seas alone this method's row error, by the same measure on
+  // the rows that sea compares, is the smaller (-1: no basic, or this is the basic method).
   double basic_row_error = std::numeric_limits<double>::quiet_NaN();
   int closer_alone = -1;
 };
