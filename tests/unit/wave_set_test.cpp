@@ -567,6 +567,21 @@ TEST(WaveSetTest, UnresolvedSlopeVarianceIsEquationFourWithOneMinusWn) {
   EXPECT_EQ(unresolved_slope_variance(set, 1e3).along, total_slope_variance(set).along);
 }
 
+// Eq. 3's unnormalised normal of the displaced surface (every weight 1) at the rest point x (m):
+// d/dx x d/dy of the displaced point, whose z is the horizontal Jacobian (per unit rest area).
+glm::dvec3 SurfaceAreaNormal(const WaveSet& set, const glm::dvec2& x) {
+  glm::dvec3 tangent_x(1.0, 0.0, 0.0), tangent_y(0.0, 1.0, 0.0);
+  for (const Wave& w : set.waves) {
+    glm::dvec3 d_dx, d_dy;
+    glsl::TrochoidDisplacementDerivatives(w.direction, w.wavenumber, w.amplitude,
+                                          glsl::TrochoidArgument(w.wave_vector, w.phase, x), d_dx,
+                                          d_dy);
+    tangent_x += d_dx;
+    tangent_y += d_dy;
+  }
+  return glm::cross(tangent_x, tangent_y);
+}
+
 // Eq. 4 against the surface itself: the slope variances of the displaced surface of a sum of
 // n = 200 trochoids (eq. 2, all weights 1), sampled on a large grid of rest points. The
 // surface statistics are per unit HORIZONTAL area of the displaced surface: each rest-grid
@@ -585,17 +600,7 @@ TEST(WaveSetTest, SlopeVariancesOfManyTrochoidsMatchTheSampledSurface) {
   double weight_sum = 0.0, along = 0.0, across = 0.0;
   for (int iy = 0; iy < kGrid; ++iy) {
     for (int ix = 0; ix < kGrid; ++ix) {
-      const glm::dvec2 x(ix * kSpacing, iy * kSpacing);
-      glm::dvec3 tangent_x(1.0, 0.0, 0.0), tangent_y(0.0, 1.0, 0.0);
-      for (const Wave& w : set.waves) {
-        glm::dvec3 d_dx, d_dy;
-        glsl::TrochoidDisplacementDerivatives(w.direction, w.wavenumber, w.amplitude,
-                                              glsl::TrochoidArgument(w.wave_vector, w.phase, x),
-                                              d_dx, d_dy);
-        tangent_x += d_dx;
-        tangent_y += d_dy;
-      }
-      const glm::dvec3 normal = glm::cross(tangent_x, tangent_y);
+      const glm::dvec3 normal = SurfaceAreaNormal(set, glm::dvec2(ix * kSpacing, iy * kSpacing));
       const glm::dvec2 slope = -glm::dvec2(normal.x, normal.y) / normal.z;
       const double weight = normal.z;  // horizontal Jacobian; > 0 (no loops)
       ASSERT_GT(weight, 0.0);
@@ -641,16 +646,7 @@ TEST(WaveSetTest, SlopesOfSixtyTrochoidsAreGaussianToThreeSigmaAndLighterBeyond)
   double weight_sum = 0.0, variance = 0.0;
   for (int i = 0; i < kPoints; ++i) {
     const glm::dvec2 x(uniform(random), uniform(random));
-    glm::dvec3 tangent_x(1.0, 0.0, 0.0), tangent_y(0.0, 1.0, 0.0);
-    for (const Wave& w : set.waves) {
-      glm::dvec3 d_dx, d_dy;
-      glsl::TrochoidDisplacementDerivatives(w.direction, w.wavenumber, w.amplitude,
-                                            glsl::TrochoidArgument(w.wave_vector, w.phase, x), d_dx,
-                                            d_dy);
-      tangent_x += d_dx;
-      tangent_y += d_dy;
-    }
-    const glm::dvec3 normal = glm::cross(tangent_x, tangent_y);
+    const glm::dvec3 normal = SurfaceAreaNormal(set, x);
     const double slope = -glm::dot(glm::dvec2(normal.x, normal.y), set.downwind) / normal.z;
     samples.push_back({slope, normal.z});
     weight_sum += normal.z;
