@@ -14,6 +14,7 @@
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
 #include "ocean/sea_point_light.glsl"
+#include "ocean/pixel_mirror_slopes.glsl"
 #ifdef SKY_SHRM
 #include "atmosphere/sky_shrm.glsl"
 #endif
@@ -163,8 +164,13 @@ void main() {
   // (ocean/reference_sun.glsl).
   sea += light.sun_irradiance * variance.z;
 #else
-  sea += light.sun_irradiance *
-         OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n), slope_variance, fresnel_r);
+  // Eq. 15 averaged over the pixel (ocean/pixel_mirror_slopes.glsl): the lobe of a calm sea, and
+  // the mirror's sun disc, can be narrower than the motion of the mirror slope across a pixel.
+  // Every method draws its sun so: they differ in the waves they resolve, not in how a pixel
+  // integrates its light.
+  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, up, sun, v_t,
+                                                  OceanToTangentFrame(sun, t_x, t_y, n),
+                                                  slope_variance, fresnel_r);
 #endif
 #endif
 

@@ -326,6 +326,138 @@ Number OceanReflectedSun(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
 }
 
 // ---------------------------------------------------------------------------------------------
+// The sun over a pixel.
+//
+// Eq. 15 gives the sun's light for one view direction, but a pixel's light is its average over
+// the pixel's solid angle, over which the mirror slope zeta_h moves. Where the lobe p is narrower
+// than that motion (a calm sea, a low sun, a far view: on a 3 m/s sea seen from 1 km with the sun
+// 10 degrees high, 128 pixels over 80 degrees, zeta_h moves across the wind by 4.8 standard
+// deviations from one side of a pixel to the other) the pixel's centre samples the lobe's flank
+// or misses it: a glitter path narrower than a pixel drew 0.08 to 0.57 of the reference's light
+// in a row, and more or less as the camera turned (docs/validation.md, "The sun's lobe across a pixel
+// (stop 36)"). Over a pixel zeta_h is linear in the pixel's coordinates (u, w) in [-1/2, 1/2]^2:
+// zeta_h = zeta_c + u d_x + w d_y, d_x and d_y its changes across the pixel, so the pixel's
+// average of p is the integral of eq. 7's Gaussian over a parallelogram, which
+// OceanPixelSlopePdf evaluates. The other factors of eq. 15 (Fresnel, h_z^-4, the masking) change
+// little across a pixel and stay at its centre's values.
+
+// Below this half-width (in standard deviations) the box average of the normal density is its
+// Taylor series, whose next term is below 1e-3 of the value for |x| <= 5; above it, a difference
+// of upper tails, whose relative cancellation 2 h |x| is then mild.
+const Number OCEAN_BOX_AVERAGE_TAYLOR_HALF_WIDTH = 0.25;
+
+// The upper tail of the standard normal distribution, Q(x) = erfc(x / sqrt(2)) / 2, for x >= 0,
+// as exp(-x^2 / 2) times A&S 7.1.26's scaled erfc (OceanScaledErfcPolynomial, smith.glsl), whose
+// relative error stays small in the tail (the box averages built on it: 0.4 % to 6 standard
+// deviations, 1.4 % to 9; ross_brdf_test.cpp), so that differences of tails far out keep their
+// relative precision (the absolute-error form OceanErfc would not: 1.5e-7 is phi(5.3)).
+Number OceanNormalUpperTail(IN(Number) x) {
+  return 0.5 * exp(-0.5 * x * x) * OceanScaledErfcPolynomial(x * sqrt(0.5));
+}
+
+// The average of the standard normal density phi over [x - h, x + h] (dimensionless), h >= 0:
+// (Phi(x + h) - Phi(x - h)) / (2 h); phi(x) at h = 0. Symmetric in x. Finite for all inputs.
+Number OceanNormalBoxAverage(IN(Number) x, IN(Number) h) {
+  Number ax = abs(x);
+  if (h < OCEAN_BOX_AVERAGE_TAYLOR_HALF_WIDTH) {
+    // phi(x) (1 + (x^2 - 1) h^2 / 6 + (x^4 - 6 x^2 + 3) h^4 / 120): phi's derivatives averaged.
+    Number x2 = ax * ax;
+    Number h2 = h * h;
+    return exp(-0.5 * x2) / sqrt(2.0 * PI) *
+           max(1.0 + (x2 - 1.0) * h2 / 6.0 + (x2 * x2 - 6.0 * x2 + 3.0) * h2 * h2 / 120.0, 0.0);
+  }
+  Number low = ax - h;
+  Number high = ax + h;
+  Number mass = low >= 0.0 ? OceanNormalUpperTail(low) - OceanNormalUpperTail(high)
+                           : 1.0 - OceanNormalUpperTail(-low) - OceanNormalUpperTail(high);
+  return max(mass, 0.0) / (2.0 * h);
+}
+
+// The average over a pixel of eq. 7's slope density p (per unit slope area, dimensionless), for
+// the mirror slope zeta_c at the pixel's centre, its changes d_x and d_y across the pixel (tangent
+// frame) and the slope variances s2 (per axis, raised to OCEAN_MIN_SLOPE_VARIANCE):
+//   (1 / |pixel|) integral over the pixel of p(zeta_c + u d_x + w d_y) du dw.
+// In units of the standard deviations (z = zeta / sigma per axis) p is the standard normal
+// density phi2(z) / (sigma_x sigma_y), and the pixel a parallelogram spanned by D_x = d_x / sigma,
+// D_y = d_y / sigma. Along the longer of the two, D_1 (length L, unit e), the integral is exact
+// (OceanNormalBoxAverage); the other, D_2 = a e + b e_perp, moves the point by b across e, which
+// weighs the pixel's rows w by phi(s0 + w b), s0 = z_c.e_perp, and by a along e. The rows are
+// then taken at their weighted mean w-bar with their spread along e, a^2 Var(w), added to the
+// box's Gaussian (the conditioning approximation of a multivariate normal's rectangle
+// probability, Mendell & Elston 1974, Biometrics 30):
+//   average = B(s0, b / 2) B((t0 + a w-bar) / r, L / (2 r)) / r,  r = sqrt(1 + a^2 Var(w)),
+// B = OceanNormalBoxAverage, t0 = z_c.e. Exact where D_x and D_y are orthogonal (a = 0: among
+// others a pixel whose motions lie along the wind's axes) and for a segment (D_2 = 0); as the
+// pixel shrinks it tends to p(zeta_c). Along e the pixels partition the plane exactly: summed
+// over pixels one D_1 apart it is their strip's integral, wherever the lobe falls (the tests
+// check the energy over a lattice of pixels, and the result against the parallelogram's
+// integral: ross_brdf_test.cpp).
+Number OceanPixelSlopePdf(IN(vec2) zeta_c, IN(vec2) d_x, IN(vec2) d_y, IN(vec2) slope_variance) {
+  vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
+  vec2 z = zeta_c / sigma;
+  vec2 motion_x = d_x / sigma;
+  vec2 motion_y = d_y / sigma;
+  bool x_longer = dot(motion_x, motion_x) >= dot(motion_y, motion_y);
+  vec2 primary = x_longer ? motion_x : motion_y;
+  vec2 secondary = x_longer ? motion_y : motion_x;
+  Number length_1 = length(primary);
+  vec2 e = length_1 > 1.0e-12 ? primary / length_1 : vec2(1.0, 0.0);
+  vec2 e_perp = vec2(-e.y, e.x);
+  Number a = dot(secondary, e);
+  Number b = dot(secondary, e_perp);
+  Number t0 = dot(z, e);
+  Number s0 = dot(z, e_perp);
+  if (b < 0.0) {  // orient e_perp along the secondary's perpendicular part: b >= 0
+    b = -b;
+    s0 = -s0;
+  }
+  // The rows' weights phi(s0 + w b) on w in [-1/2, 1/2]: their mass, mean and variance.
+  Number row_weight = OceanNormalBoxAverage(s0, 0.5 * b);
+  Number w_mean = 0.0;
+  Number w_variance = 1.0 / 12.0;  // uniform rows (b -> 0)
+  if (b >= OCEAN_BOX_AVERAGE_TAYLOR_HALF_WIDTH) {
+    // The standard normal truncated to [s_low, s_high]: mean and variance (of s = s0 + w b).
+    Number s_low = s0 - 0.5 * b;
+    Number s_high = s0 + 0.5 * b;
+    Number mass = row_weight * b;
+    if (mass > 1.0e-30) {
+      Number phi_low = exp(-0.5 * s_low * s_low) / sqrt(2.0 * PI);
+      Number phi_high = exp(-0.5 * s_high * s_high) / sqrt(2.0 * PI);
+      Number s_mean = clamp((phi_low - phi_high) / mass, s_low, s_high);
+      Number s_variance =
+          1.0 + (s_low * phi_low - s_high * phi_high) / mass - s_mean * s_mean;
+      w_mean = (s_mean - s0) / b;
+      w_variance = clamp(s_variance / (b * b), 0.0, 1.0 / 12.0);
+    }
+  } else {
+    w_mean = -s0 * b / 12.0;  // first order in b: weights 1 - s0 b w
+  }
+  Number r = sqrt(1.0 + a * a * w_variance);
+  Number along = OceanNormalBoxAverage((t0 + a * w_mean) / r, 0.5 * length_1 / r) / r;
+  return row_weight * along / (sigma.x * sigma.y);
+}
+
+// OceanReflectedSun (eq. 15) averaged over a pixel: the same, with p(zeta_h) replaced by its
+// average over the pixel (OceanPixelSlopePdf), for unit v (toward the eye through the pixel's
+// centre) and l in the tangent frame, and zeta_dx, zeta_dy the changes of zeta_h (relative to
+// the sea at rest) across the pixel (shaders/ocean/pixel_mirror_slopes.glsl). Equal to
+// OceanReflectedSun for zeta_dx = zeta_dy = 0.
+Number OceanReflectedSunOverPixel(IN(vec3) v, IN(vec3) l, IN(vec2) slope_variance,
+                                  IN(Number) fresnel_r, IN(vec2) zeta_dx, IN(vec2) zeta_dy) {
+  if (v.z < 0.0 || l.z <= 0.0) {
+    return 0.0;
+  }
+  vec2 s2 = max(slope_variance, OCEAN_SUN_MIN_SLOPE_VARIANCE);
+  vec2 zeta_h;
+  Number factor = OceanMirrorFacetFactor(v, l, fresnel_r, zeta_h);
+  if (factor <= 0.0) {
+    return 0.0;
+  }
+  return OceanPixelSlopePdf(zeta_h, zeta_dx, zeta_dy, s2) * factor /
+         OceanSunMaskedCosView(v, l, s2);
+}
+
+// ---------------------------------------------------------------------------------------------
 // Sky and sea light (sec. 5.2, 5.3).
 
 // The effective Fresnel reflectance F-bar (dimensionless), the paper's fit eq. 26 of eq. 24

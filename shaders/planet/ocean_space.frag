@@ -17,6 +17,7 @@
 #include "ocean/ross_brdf.glsl"
 #include "ocean/sky_array_reflection.glsl"
 #include "ocean/sea_point_light.glsl"
+#include "ocean/pixel_mirror_slopes.glsl"
 #if defined(CALM_AREAS) || defined(KELVIN_WAKES)
 #include "planet/space_local_features.glsl"
 #endif
@@ -64,7 +65,11 @@ void main() {
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);
 #endif
 #ifdef SUN_GLINT
-  sea += light.sun_irradiance * OceanReflectedSun(v_t, OceanToTangentFrame(sun, t_x, t_y, n),
+  // Eq. 15 averaged over the pixel, as the surface's full method draws it
+  // (ocean/pixel_mirror_slopes.glsl): from afar the planet's curvature turns the normal across a
+  // pixel's footprint as much as the view ray turns.
+  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, n, sun, v_t,
+                                                  OceanToTangentFrame(sun, t_x, t_y, n),
                                                   slope_variance, fresnel_r);
 #endif
 
