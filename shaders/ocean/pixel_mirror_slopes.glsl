@@ -1,7 +1,7 @@
 // The sun's mirror slopes at the edges of a pixel, for OceanReflectedSunOverPixel
-// (ocean/ross_brdf.glsl): eq. 15 averaged over the pixel. Used by the full method's lighting pass
-// (ocean/ocean_lighting.frag) and the view from space (planet/ocean_space.frag), so that the two
-// agree at the hand-over. GLSL only (common/frame.glsl); the CPU tests give
+// (ocean/ross_brdf.glsl): eq. 15 averaged over the pixel. Used by the lighting pass of every
+// method but the reference (ocean/ocean_lighting.frag) and by the view from space
+// (planet/ocean_space.frag), so that the two agree at the hand-over. GLSL only (common/frame.glsl); the CPU tests give
 // OceanReflectedSunOverPixel the same edges' slopes through OceanHalfVectorSlopes.
 //
 // Frames and units: the nadir frame of common/frame.glsl; slopes dimensionless, in the tangent

@@ -65,7 +65,7 @@ void main() {
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);
 #endif
 #ifdef SUN_GLINT
-  // Eq. 15 averaged over the pixel, as the surface's full method draws it
+  // Eq. 15 averaged over the pixel, as the surface's methods draw it
   // (ocean/pixel_mirror_slopes.glsl): from afar the planet's curvature turns the normal across a
   // pixel's footprint as much as the view ray turns.
   sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, n, sun, v_t,
