@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -740,8 +741,39 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   EXPECT_DOUBLE_EQ(lines[1].row_error, 3.0 / 76.0);
   EXPECT_DOUBLE_EQ(lines[1].basic_row_error, 15.0 / 76.0);
   EXPECT_EQ(lines[1].closer_alone, 1);
-  // The files: seas.csv holds the lines, index.html their table, results.json the seas.
-  write_report(report, dir_.string());
+  // The rows summed, NaN where not every sea compares them.
+  ASSERT_EQ(lines[1].method_rows.size(), 5u);
+  ASSERT_EQ(lines[1].reference_rows.size(), 5u);
+  EXPECT_DOUBLE_EQ(lines[1].method_rows[0], 39.0);
+  EXPECT_DOUBLE_EQ(lines[1].method_rows[1], 29.0);
+  EXPECT_TRUE(std::isnan(lines[1].method_rows[2]));
+  EXPECT_TRUE(std::isnan(lines[1].method_rows[3]));
+  EXPECT_DOUBLE_EQ(lines[1].method_rows[4], 7.0);
+  EXPECT_DOUBLE_EQ(lines[1].reference_rows[0], 40.0);
+  EXPECT_DOUBLE_EQ(lines[1].reference_rows[4], 6.0);
+  EXPECT_TRUE(std::isnan(lines[1].reference_rows[3]));
+  EXPECT_DOUBLE_EQ(lines[0].method_rows[1], 40.0);
+  // The files: seas.csv holds the lines, index.html their table and the plot of the summed rows,
+  // results.json the seas.
+  const std::vector<std::string> written = write_report(report, dir_.string());
+  EXPECT_NE(std::find(written.begin(), written.end(), "plots/view_seas_sun_rows.png"),
+            written.end());
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "plots" / "view_seas_sun_rows.png"));
+  // Its data's row 0: the reference's sum, then basic's and full's sums and ratios.
+  std::istringstream dat(read_text(dir_ / "plots" / "view_seas_sun_rows.dat"));
+  std::string line;
+  while (std::getline(dat, line) && line.rfind("0 ", 0) != 0) {
+  }
+  std::istringstream row(line);
+  double y = -1, reference = 0, basic = 0, basic_ratio = 0, full = 0, full_ratio = 0;
+  row >> y >> reference >> basic >> basic_ratio >> full >> full_ratio;
+  EXPECT_EQ(y, 0.0) << line;
+  EXPECT_DOUBLE_EQ(reference, 40.0);
+  EXPECT_DOUBLE_EQ(basic, 36.0);
+  EXPECT_DOUBLE_EQ(basic_ratio, 0.9);
+  EXPECT_DOUBLE_EQ(full, 39.0);
+  EXPECT_DOUBLE_EQ(full_ratio, 39.0 / 40.0);
+  EXPECT_NE(read_text(dir_ / "index.html").find("plots/view_seas_sun_rows.png"), std::string::npos);
   const auto csv = parse_csv(read_text(dir_ / "seas.csv"));
   ASSERT_EQ(csv.size(), 3u);
   EXPECT_EQ(csv[0], (std::vector<std::string>{"case", "method", "term", "seas", "rows", "row_error",

@@ -333,6 +333,74 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   return draw(gnuplot, plots, name, data, script, options);
 }
 
+// Fig. 10's right column over the seas of a case (summarize_seas): for each method measured
+// against the case's reference on `term`, its rows summed over the seas beside the reference's
+// (the first such method's reference rows: every one of them is the case's reference, on the
+// rows that method counts), and their ratio. `lines` are the case's lines for the term.
+std::string seas_rows_plot(const std::string& gnuplot, const fs::path& plots,
+                           const std::string& case_name, const std::string& term,
+                           const std::vector<const SeaLine*>& lines, const ReportOptions& options) {
+  if (lines.empty()) return "";
+  std::size_t rows = 0;
+  bool any = false;
+  for (const SeaLine* l : lines) {
+    rows = std::max(rows, l->method_rows.size());
+    for (double v : l->reference_rows) any = any || std::isfinite(v);
+  }
+  if (!any) return "";  // no row counted in every sea: gnuplot refuses an empty plot
+  std::string data = "# row reference";
+  for (const SeaLine* l : lines) data += " total_" + l->method + " ratio_" + l->method;
+  data += "\n# totals: luminance summed over the row's sea pixels and over " +
+          std::to_string(lines.front()->seas) +
+          " seas, W m^-2 sr^-1 nm^-1; NaN: a row not compared in every sea\n";
+  const auto at = [](const std::vector<double>& v, std::size_t y) {
+    return y < v.size() ? v[y] : kNaN;
+  };
+  for (std::size_t y = 0; y < rows; ++y) {
+    data += std::to_string(y) + " " + number(at(lines.front()->reference_rows, y), "NaN");
+    for (const SeaLine* l : lines) {
+      const double m = at(l->method_rows, y), r = at(l->reference_rows, y);
+      data += " " + number(m, "NaN") + " " + number(r > 0.0 ? m / r : kNaN, "NaN");
+    }
+    data += "\n";
+  }
+  const std::string name = case_name + "_seas_" + term + "_rows";
+  std::string script =
+      "set multiplot layout 2,1 title '" + case_name + ", " + term + ": total radiance per image " +
+      "row summed over " + std::to_string(lines.front()->seas) +
+      " seas (fig. 10)'\nset key outside right\nset grid\nset xlabel 'image row (0 = top)'\n"
+      "set lmargin 15\nset rmargin 22\nset xrange [-0.5:" +
+      number(static_cast<double>(rows) - 0.5) +
+      "]\nset ylabel \"row total luminance\\nover the seas\"\nplot '" + name +
+      ".dat' using 1:2 with lines lw 2 lc 'black' title 'reference'";
+  for (std::size_t i = 0; i < lines.size(); ++i)
+    script += ", '" + name + ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 lt " +
+              std::to_string(i + 1) + " title '" + lines[i]->method + "'";
+  // The ratio on a log scale clamped to [1/64, 64], as in rows_plot; where no method has a
+  // defined ratio (every summed reference row 0) the panel says so.
+  bool any_ratio = false;
+  for (const SeaLine* l : lines)
+    for (std::size_t y = 0; y < l->method_rows.size(); ++y)
+      any_ratio = any_ratio || (at(l->reference_rows, y) > 0.0 && std::isfinite(l->method_rows[y]));
+  if (any_ratio) {
+    script +=
+        "\nset logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
+        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 lc 'grey' "
+        "notitle";
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(4 + 2 * i) +
+                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" + lines[i]->method +
+                "'";
+  } else {
+    script +=
+        "\nset label 1 'no row lit in the summed reference' at graph 0.5, graph 0.5 center\n"
+        "set ylabel 'ratio to the reference'\nplot 1 with lines dt 2 title 'ratio 1'\nunset label "
+        "1";
+  }
+  script += "\nunset multiplot\n";
+  return draw(gnuplot, plots, name, data, script, options);
+}
+
 // Every method and variant: its relative L1 error over the sea (left) and its row error (right,
 // TermMetrics::row_error) against its frame time (timed apart at the case's TimingSettings when
 // it has them, every term in one frame). A colour per method, a point shape per term; the
@@ -1178,7 +1246,12 @@ std::vector<SeaLine> summarize_seas(const Report& report) {
         }
       }
       line.row_error = row_error(sums.method, sums.reference, sums.ratios);
-      for (const ChannelValues& r : sums.ratios) line.rows += std::isfinite(r.l) ? 1 : 0;
+      for (std::size_t y = 0; y < sums.ratios.size(); ++y) {
+        const bool counts = std::isfinite(sums.ratios[y].l);
+        line.rows += counts ? 1 : 0;
+        line.method_rows.push_back(counts ? sums.method[y].l : kNaN);
+        line.reference_rows.push_back(counts ? sums.reference[y].l : kNaN);
+      }
       lines.push_back(line);
     }
   }
@@ -1598,6 +1671,35 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
       const std::string stem = png.substr(0, png.size() - 4);
       for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
       summary_links.push_back({term + ": mean row deviation against height", "plots/" + png});
+    }
+  } catch (const FileError& e) {
+    throw ReportError(e.what());
+  }
+  // Over the seas: one plot per case and term, of the methods measured against the case's
+  // reference (a variant with its own reference sums another sea's rows).
+  try {
+    const std::vector<SeaLine> seas = summarize_seas(report);
+    const auto own_reference = [&](const SeaLine& l) {
+      for (const CaseResult& c : report.cases)
+        if (c.sea_of == l.case_name)
+          if (const MethodResult* m = method_named(c, l.method)) return !m->reference.empty();
+      return false;
+    };
+    std::vector<std::pair<std::string, std::string>> keys;  // (case, term), first seen first
+    for (const SeaLine& l : seas)
+      if (std::find(keys.begin(), keys.end(), std::pair{l.case_name, l.term}) == keys.end())
+        keys.push_back({l.case_name, l.term});
+    for (const auto& [case_name, term] : keys) {
+      std::vector<const SeaLine*> lines;
+      for (const SeaLine& l : seas)
+        if (l.case_name == case_name && l.term == term && !own_reference(l)) lines.push_back(&l);
+      const std::string png = seas_rows_plot(gnuplot, plots, case_name, term, lines, options);
+      if (png.empty()) continue;
+      const std::string stem = png.substr(0, png.size() - 4);
+      for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+      summary_links.push_back({case_name + " " + term + ": per-row radiance summed over " +
+                                   std::to_string(lines.front()->seas) + " seas",
+                               "plots/" + png});
     }
   } catch (const FileError& e) {
     throw ReportError(e.what());

@@ -227,6 +227,11 @@ struct SeaLine {
   // the rows that sea compares, is the smaller (-1: no basic, or this is the basic method).
   double basic_row_error = std::numeric_limits<double>::quiet_NaN();
   int closer_alone = -1;
+  // Each image row's luminance total (W m^-2 sr^-1 nm^-1) summed over the seas, the method's and
+  // its reference's, row 0 at the top; NaN on the rows that do not count (not compared by every
+  // sea, or, beside the basic method, by basic's). Fig. 10's right column over the seas
+  // (plots/<case>_seas_<term>_rows.png).
+  std::vector<double> method_rows, reference_rows;
 };
 std::vector<SeaLine> summarize_seas(const Report& report);
 
@@ -254,6 +259,7 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
 //   convergence.csv                            reference_convergence
 //   seas.csv                                   summarize_seas (its header alone without seas)
+//   plots/<case>_seas_<term>_rows.{dat,gp,png} the rows summed over a case's seas (fig. 10)
 //   plots/summary_<term>_height.{dat,gp,png}   row error against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,
