@@ -904,8 +904,8 @@ TEST(RossBrdf, PixelSlopePdfIsTheAverageOverThePixel) {
     std::vector<std::pair<vec2, double>> samples;
     for (const vec2 phase : {vec2(0.0), vec2(0.5, 0.5), vec2(0.25, 0.7)}) {
       double energy = 0.0;
-      for (int j = -40; j <= 40; ++j) {
-        for (int i = -40; i <= 40; ++i) {
+      for (int j = -100; j <= 100; ++j) {  // to 9 standard deviations for the smallest pixel
+        for (int i = -100; i <= 100; ++i) {
           const vec2 zeta = (i + phase.x) * d_x + (j + phase.y) * d_y;
           if (length(zeta / sigma) > 9.0) continue;
           const double value = OceanPixelSlopePdf(zeta, d_x, d_y, s2);
