@@ -168,7 +168,7 @@ void main() {
   // the mirror's sun disc, can be narrower than the motion of the mirror slope across a pixel.
   // Every method draws its sun so: they differ in the waves they resolve, not in how a pixel
   // integrates its light.
-  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, up, sun, v_t,
+  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, up, v_t,
                                                   OceanToTangentFrame(sun, t_x, t_y, n),
                                                   slope_variance, fresnel_r);
 #endif

@@ -68,7 +68,7 @@ void main() {
   // Eq. 15 averaged over the pixel, as the surface's methods draw it
   // (ocean/pixel_mirror_slopes.glsl): from afar the planet's curvature turns the normal across a
   // pixel's footprint as much as the view ray turns.
-  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, n, sun, v_t,
+  sea += light.sun_irradiance * OceanSunOverPixel(gl_FragCoord.xy, t_x, t_y, n, n, v_t,
                                                   OceanToTangentFrame(sun, t_x, t_y, n),
                                                   slope_variance, fresnel_r);
 #endif

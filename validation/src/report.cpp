@@ -232,6 +232,21 @@ std::string timing_text(const TimingSettings& timing) {
                           : std::string("the image size");
 }
 
+// The ratio panel of the per-row plots (rows_plot, seas_rows_plot): a log scale, so that half and
+// twice the reference lie as far from 1, and clamp(r) holding a method black where the reference
+// is lit (ratio 0) or 100 times too bright at the axis's ends.
+constexpr const char* kRatioAxis =
+    "set logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
+    "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\n";
+
+// One method's clamped ratio, column `column` of NAME.dat, in line type index + 1 (the colour it
+// has in the totals' panel above).
+std::string ratio_curve(const std::string& name, std::size_t column, std::size_t index,
+                        const std::string& title) {
+  return "'" + name + ".dat' using 1:(clamp($" + std::to_string(column) + ")) with lines lw 2 lt " +
+         std::to_string(index + 1) + " title '" + title + "'";
+}
+
 // Fig. 10's right column: each plain method's row totals (luminance over the sea) and their
 // ratio to the reference's, row 0 at the top of the image.
 std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
@@ -305,11 +320,7 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
   for (const auto& [name_, t] : curves)
     for (const ChannelValues& ratio : t->metrics.row_ratios) any_ratio |= std::isfinite(ratio.l);
   if (any_ratio) {
-    // On a log scale, so that half and twice the reference lie as far from 1; a method black
-    // where the reference is lit (ratio 0) or 100 times too bright is drawn at the clamp.
-    script +=
-        "set logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
-        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot ";
+    script += std::string(kRatioAxis) + "plot ";
     // The band a method's ratio may lie in for being the truth's, given the reference's own
     // uncertainty u: 1 +- u (clamped to the axis).
     if (any_uncertainty) {
@@ -320,9 +331,7 @@ std::string rows_plot(const std::string& gnuplot, const fs::path& plots, const C
     }
     script += "1 with lines dt 2 lc 'grey' notitle";
     for (std::size_t i = 0; i < curves.size(); ++i)
-      script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(3 + 2 * i) +
-                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" + curves[i].first +
-                "'";
+      script += ", " + ratio_curve(name, 3 + 2 * i, i, curves[i].first);
   } else {
     script +=
         "set label 1 'no row measured (no row resolved by the reference, or none lit)' at graph "
@@ -376,21 +385,16 @@ std::string seas_rows_plot(const std::string& gnuplot, const fs::path& plots,
   for (std::size_t i = 0; i < lines.size(); ++i)
     script += ", '" + name + ".dat' using 1:" + std::to_string(3 + 2 * i) + " with lines lw 2 lt " +
               std::to_string(i + 1) + " title '" + lines[i]->method + "'";
-  // The ratio on a log scale clamped to [1/64, 64], as in rows_plot; where no method has a
-  // defined ratio (every summed reference row 0) the panel says so.
+  // The ratio as rows_plot draws it; where no method has a defined ratio (every summed reference
+  // row 0) the panel says so.
   bool any_ratio = false;
   for (const SeaLine* l : lines)
     for (std::size_t y = 0; y < l->method_rows.size(); ++y)
       any_ratio = any_ratio || (at(l->reference_rows, y) > 0.0 && std::isfinite(l->method_rows[y]));
   if (any_ratio) {
-    script +=
-        "\nset logscale y 2\nset ylabel \"ratio to the reference\\n(log scale, in [1/64, 64])\"\n"
-        "clamp(r) = r < 1.0/64 ? 1.0/64 : (r > 64 ? 64 : r)\nplot 1 with lines dt 2 lc 'grey' "
-        "notitle";
+    script += "\n" + std::string(kRatioAxis) + "plot 1 with lines dt 2 lc 'grey' notitle";
     for (std::size_t i = 0; i < lines.size(); ++i)
-      script += ", '" + name + ".dat' using 1:(clamp($" + std::to_string(4 + 2 * i) +
-                ")) with lines lw 2 lt " + std::to_string(i + 1) + " title '" + lines[i]->method +
-                "'";
+      script += ", " + ratio_curve(name, 4 + 2 * i, i, lines[i]->method);
   } else {
     script +=
         "\nset label 1 'no row lit in the summed reference' at graph 0.5, graph 0.5 center\n"
