@@ -265,6 +265,11 @@ const std::vector<KeyDesc>& key_table() {
           "of nine samples inside the filter's support (sec. 7.2), or sky maps prefiltered in "
           "frequency space for rough seas seen from afar (Ramamoorthi & Hanrahan 2002; "
           "docs/spherical_harmonics.md)."),
+      choice<&S::ocean, &OceanSettings::effective_fresnel>(
+          "ocean.effective_fresnel", {"fit", "table"}, "\"fit\"",
+          "Effective Fresnel reflectance of the reflected sky and the refracted light: the "
+          "paper's fit (eq. 26) or eq. 24 itself, integrated in double and read from a table "
+          "(0.034 closer at grazing views; docs/ocean_fresnel.md)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),

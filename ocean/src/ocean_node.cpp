@@ -14,6 +14,7 @@
 
 #include "ross_brdf_reference.hpp"
 #include "thalassa/atmosphere/gl/sky_shrm.hpp"
+#include "thalassa/ocean/gl/effective_fresnel_texture.hpp"
 #include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
@@ -171,6 +172,9 @@ class OceanNode final : public gl::Node {
       glossy_sky_ = std::make_unique<atmosphere::GlossySkyMaps>();
     if (options_.features && !options_.features->empty())
       local_features_ = std::make_unique<LocalFeatureBuffers>(*options_.features);
+    // Eq. 24's table only where the scene asks for it and a term reads F-bar.
+    if (options_.settings.effective_fresnel == "table" && (options_.sky || options_.sea))
+      effective_fresnel_ = std::make_unique<EffectiveFresnelTexture>();
   }
 
   std::string name() const override { return "ocean"; }
@@ -187,6 +191,7 @@ class OceanNode final : public gl::Node {
     if (glossy_sky_)
       for (const std::string& item : glossy_sky_->built()) list.push_back(item);
     if (options_.sea) list.push_back("ocean.refracted_light");
+    if (effective_fresnel_) list.push_back("ocean.effective_fresnel.table");
     if (options_.air) list.push_back("ocean.aerial_perspective");
     if (local_features_)
       for (const std::string& item : local_features_->built()) list.push_back(item);
@@ -201,6 +206,7 @@ class OceanNode final : public gl::Node {
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sky && options_.sky_shrm) lighting_defines["SKY_SHRM"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
+    if (effective_fresnel_) EffectiveFresnelTexture::add_defines(lighting_defines);
     if (options_.method == OceanMethod::reference) lighting_defines["METHOD_REFERENCE"] = "1";
     if (reference_sun()) lighting_defines["REFERENCE_SUN"] = "1";
     if (reference_sun_scatter()) lighting_defines["REFERENCE_SUN_SCATTER"] = "1";
@@ -341,6 +347,7 @@ class OceanNode final : public gl::Node {
     glUseProgram(lighting);
     glBindTextureUnit(0, normal_texture_.get());
     glBindTextureUnit(1, variance_texture_.get());
+    if (effective_fresnel_) effective_fresnel_->bind();
     gl::draw_fullscreen_pass();
     context.timer.end_pass("ocean.lighting");
     resolved_waves_ = count_resolved(footprint, resolved_wave_scale(inputs.camera_height));
@@ -1048,6 +1055,7 @@ class OceanNode final : public gl::Node {
   OceanNodeOptions options_;
   std::shared_ptr<atmosphere::SkyProvider> provider_;
   std::unique_ptr<atmosphere::GlossySkyMaps> glossy_sky_;  // only with sky_shrm
+  std::unique_ptr<EffectiveFresnelTexture> effective_fresnel_;  // only with eq. 24's table
   std::unique_ptr<LocalFeatureBuffers> local_features_;    // only with wakes or calm areas
   WaveSet waves_;
   gl::Buffer wave_buffer_;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "thalassa/ocean/gl/effective_fresnel_texture.hpp"
 #include "thalassa/ocean/gl/local_features_gpu.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
@@ -17,6 +18,9 @@ class SpaceOceanNode final : public gl::Node {
       : options_(options), waves_(ocean::make_wave_set(options.settings)) {
     if (options_.features && !options_.features->empty())
       local_features_ = std::make_unique<ocean::LocalFeatureBuffers>(*options_.features);
+    // Eq. 24's table only where the scene asks for it and a term reads F-bar (as the surface's).
+    if (options_.settings.effective_fresnel == "table" && (options_.sky || options_.sea))
+      effective_fresnel_ = std::make_unique<ocean::EffectiveFresnelTexture>();
   }
 
   std::string name() const override { return "ocean"; }
@@ -25,6 +29,7 @@ class SpaceOceanNode final : public gl::Node {
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky) list.push_back("ocean.sky_reflection.sky_map_array");
     if (options_.sea) list.push_back("ocean.refracted_light");
+    if (effective_fresnel_) list.push_back("ocean.effective_fresnel.table");
     if (options_.air) list.push_back("ocean.aerial_perspective");
     if (local_features_)
       for (const std::string& item : local_features_->built()) list.push_back(item);
@@ -38,6 +43,7 @@ class SpaceOceanNode final : public gl::Node {
     if (options_.sky) defines["SKY_TERM"] = "1";
     if (options_.sea) defines["SEA_TERM"] = "1";
     if (options_.air) defines["AIR_TERM"] = "1";
+    if (effective_fresnel_) ocean::EffectiveFresnelTexture::add_defines(defines);
     if (options_.sky) {
       defines["SKY_MAP_ARRAY"] = "1";
       provider.sky_map_array(context.shaders, &context.timer);
@@ -69,6 +75,7 @@ class SpaceOceanNode final : public gl::Node {
                          float(sky.y), float(sky.z));
     }
     provider.bind();
+    if (effective_fresnel_) effective_fresnel_->bind();
     if (local_features_) {
       local_features_->set_uniforms(program);
       local_features_->bind();
@@ -85,6 +92,7 @@ class SpaceOceanNode final : public gl::Node {
   SpaceOceanNodeOptions options_;
   ocean::WaveSet waves_;
   std::unique_ptr<ocean::LocalFeatureBuffers> local_features_;  // only with wakes or calm areas
+  std::unique_ptr<ocean::EffectiveFresnelTexture> effective_fresnel_;  // only with eq. 24's table
 };
 
 }  // namespace

@@ -3,7 +3,7 @@
 // unresolved slope variance), the sun (eq. 15), the sky (eq. 21 with the effective Fresnel of
 // eq. 26 and the filtered sky-map fetch of eq. 27) and the refracted light (eq. 28), all from
 // the sky provider (atmosphere/sky_provider.glsl), then the aerial perspective between the
-// camera and the sea. SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
+// camera and the sea (EFFECTIVE_FRESNEL_TABLE: eq. 24's table for eq. 26, ocean/effective_fresnel.glsl). SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
 // the terms (validation renders them one by one); SKY_NINE_SAMPLES replaces eq. 27's single
 // anisotropic fetch with the average of nine samples inside the filter's support that the paper
 // mentions (sec. 7.2); SKY_SHRM replaces it with a lookup in sky maps prefiltered in frequency
@@ -13,6 +13,7 @@
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
+#include "ocean/effective_fresnel.glsl"
 #include "ocean/sea_point_light.glsl"
 #include "ocean/pixel_mirror_slopes.glsl"
 #ifdef SKY_SHRM
@@ -114,9 +115,8 @@ void main() {
   light.irradiance = horizontal_irradiance;
 #endif
 
-  // Sky (eq. 21, 26, 27) and refracted light (eq. 28).
-  const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
-                                              fresnel_r);
+  // Sky (eq. 21, 26 or 24, 27) and refracted light (eq. 28).
+  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
 #ifdef SKY_SHRM

@@ -115,6 +115,18 @@ const Number OCEAN_DEFAULT_FRESNEL_R = 0.02;
 const Number OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY = 2.69;
 const Number OCEAN_EFFECTIVE_FRESNEL_SCALE = 22.7;
 
+// The table of eq. 24 that replaces the fit where a scene asks for it (ocean.effective_fresnel =
+// "table"; ocean/effective_fresnel.hpp builds it, shaders/ocean/effective_fresnel.glsl reads it):
+// COS_SIZE x SIGMA_SIZE samples of the visible facets' mean Schlick factor for isotropic slopes and
+// its derivative in the variance across the view (OceanEffectiveFresnelFromTable), on a grid
+// uniform in sqrt(cos theta_v) (x) and sqrt(sigma_v / MAX_SIGMA) (y), which puts samples where the
+// factor changes fastest: at grazing views, where it falls from Schlick's value over
+// cos theta_v ~ sigma_v for small sigma_v. Measured errors in docs/ocean_fresnel.md. sigma_v is
+// held at MAX_SIGMA (slope variance 1 toward the view, the range every function here accepts).
+const int OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE = 128;
+const int OCEAN_EFFECTIVE_FRESNEL_TABLE_SIGMA_SIZE = 64;
+const Number OCEAN_EFFECTIVE_FRESNEL_TABLE_MAX_SIGMA = 1.0;
+
 // The largest radius (in units of the horizon circle's) that the stereographic sky-map mapping
 // returns, dimensionless. The mapping U(r) = (r_x, r_y) / (1 + r_z) sends the nadir r = (0, 0, -1)
 // to infinity; rays within 2 / OCEAN_SKY_MAP_MAX_RADIUS rad (0.11 deg) of the nadir are mapped to
@@ -479,6 +491,38 @@ Number OceanEffectiveFresnel(IN(Number) cos_theta_v, IN(Number) view_slope_varia
   Number exponent = max(5.0 * exp(-OCEAN_EFFECTIVE_FRESNEL_EXPONENT_DECAY * sigma_v), 1.0e-6);
   return fresnel_r + (1.0 - fresnel_r) * pow(x, exponent) /
          (1.0 + OCEAN_EFFECTIVE_FRESNEL_SCALE * sigma_v * sqrt(sigma_v));
+}
+
+// The position of (cos theta_v, sigma_v^2 = view_slope_variance) in the effective Fresnel table,
+// in samples (x in [0, COS_SIZE - 1], y in [0, SIGMA_SIZE - 1]; clamped to the table): the
+// sample (i, j) holds cos theta_v = (i / (COS_SIZE - 1))^2 and
+// sigma_v = MAX_SIGMA (j / (SIGMA_SIZE - 1))^2 (OceanEffectiveFresnelTableNode).
+vec2 OceanEffectiveFresnelTablePosition(IN(Number) cos_theta_v, IN(Number) view_slope_variance) {
+  Number sigma_v = sqrt(max(view_slope_variance, 0.0));
+  Number x = sqrt(clamp(cos_theta_v, 0.0, 1.0));
+  Number y = sqrt(min(sigma_v / OCEAN_EFFECTIVE_FRESNEL_TABLE_MAX_SIGMA, 1.0));
+  return vec2(x * Number(OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE - 1),
+              y * Number(OCEAN_EFFECTIVE_FRESNEL_TABLE_SIGMA_SIZE - 1));
+}
+
+// (cos theta_v, sigma_v) of the table's sample (i, j), the inverse of
+// OceanEffectiveFresnelTablePosition at the samples.
+vec2 OceanEffectiveFresnelTableNode(IN(Number) i, IN(Number) j) {
+  Number x = i / Number(OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE - 1);
+  Number y = j / Number(OCEAN_EFFECTIVE_FRESNEL_TABLE_SIGMA_SIZE - 1);
+  return vec2(x * x, OCEAN_EFFECTIVE_FRESNEL_TABLE_MAX_SIGMA * y * y);
+}
+
+// F-bar (dimensionless) from the table's bilinear sample (I, dI/db) at (cos theta_v, along), for
+// slope variances `along` and `across` the view's azimuth and Schlick's R = fresnel_r: eq. 24's
+// average I carried from isotropic slopes to b = across to first order, held to [0, 1]. Both
+// variances are held to [0, 1], as the table's are (beyond it the difference would be float
+// rounding of large numbers).
+Number OceanEffectiveFresnelFromTable(IN(vec2) table_sample, IN(Number) along, IN(Number) across,
+                                      IN(Number) fresnel_r) {
+  Number change = clamp(across, 0.0, 1.0) - clamp(along, 0.0, 1.0);
+  Number average = clamp(table_sample.x + table_sample.y * change, 0.0, 1.0);
+  return fresnel_r + (1.0 - fresnel_r) * average;
 }
 
 // 1 + r_z (dimensionless), the denominator of the stereographic mapping, for a unit r. Near the

@@ -15,6 +15,7 @@
 #include "common/frame.glsl"
 #include "atmosphere/sky_provider.glsl"
 #include "ocean/ross_brdf.glsl"
+#include "ocean/effective_fresnel.glsl"
 #include "ocean/sky_array_reflection.glsl"
 #include "ocean/sea_point_light.glsl"
 #include "ocean/pixel_mirror_slopes.glsl"
@@ -54,8 +55,7 @@ void main() {
   // The sun, the irradiance and the atmosphere at the point itself (ocean/sea_point_light.glsl).
   const OceanPointLight light = OceanLightAtPoint(x, n, sun);
 
-  const float fresnel = OceanEffectiveFresnel(v_t.z, OceanSlopeVarianceToward(v_t, slope_variance),
-                                              fresnel_r);
+  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));

@@ -4,8 +4,9 @@
 // by the environment-map provider like any sky.exr: no atmosphere, no sun found in it), with the
 // sun's glint and the refracted light off (LightTerms), the sea reflects the sky only: its
 // radiance is F-bar(v) L-bar (eq. 21, 26), with the effective Fresnel F-bar in [R, 1] (eq. 26:
-// R + (1 - R) (1 - cos theta_v)^e / (1 + 22.7 sigma_v^1.5) with e > 0) and L-bar the filtered sky
-// map, an average of texels that hold 1 above the horizon and, below it, the paper's
+// R + (1 - R) (1 - cos theta_v)^e / (1 + 22.7 sigma_v^1.5) with e > 0; eq. 24's table,
+// ocean.effective_fresnel = "table": R + (1 - R) I with I held to [0, 1]) and L-bar the filtered
+// sky map, an average of texels that hold 1 above the horizon and, below it, the paper's
 // multiple-reflection radiance F_mean E_sky / pi = 0.0664 (sec. 6; E_sky = pi). So no pixel may
 // exceed 1 (beyond float rounding), and no pixel may fall below R, the minimum over view angles
 // of the sea's reflectance (R = F-bar at normal incidence), wherever the filtered reflection
@@ -107,11 +108,15 @@ const FurnaceView kFurnaceViews[] = {
      R"({"camera": {"pitch": -10, "height": 4}, "ocean": {"sky_filter": "nine_samples", "wind_speed": 20, "lambda_max": 300}})"},
     {"surface_shrm",
      R"({"camera": {"pitch": -10, "height": 4}, "ocean": {"sky_filter": "shrm", "wind_speed": 20, "lambda_max": 300}})"},
+    {"surface_horizon_table",
+     R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"effective_fresnel": "table", "wind_speed": 40, "lambda_max": 1000}})"},
     {"surface_19_km", R"({"camera": {"pitch": -20, "height": 19000}})"},
     {"space_20_km", R"({"camera": {"pitch": -20, "height": 20000}})"},
     {"space_straight_down", R"({"camera": {"pitch": -90, "height": 400000}})"},
     {"space_limb_wind_40",
      R"({"camera": {"pitch": -15, "height": 400000}, "ocean": {"wind_speed": 40, "lambda_max": 1000}})"},
+    {"space_limb_table",
+     R"({"camera": {"pitch": -15, "height": 400000}, "ocean": {"effective_fresnel": "table", "wind_speed": 40, "lambda_max": 1000}})"},
     {"space_geostationary",
      R"({"camera": {"pitch": -90, "height": 36000000, "fov_y": 20, "lat": 0}})"},
 };

@@ -21,6 +21,8 @@
 #include "ross_brdf_reference.hpp"
 #include "test_support.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
+#include "thalassa/ocean/effective_fresnel.hpp"
+#include "thalassa/ocean/gl/effective_fresnel_texture.hpp"
 #include "trochoids_reference.hpp"
 
 namespace thalassa {
@@ -397,6 +399,47 @@ TEST_F(GpuNumericsTest, EffectiveFresnel) {
                          : other)
         .add(error, where);
     schlick.add(Relative(gpu[i].y, glsl::OceanSchlickFresnel(cos_theta, 0.02), 0.0), where);
+  }
+}
+
+TEST_F(GpuNumericsTest, EffectiveFresnelTable) {
+  // Eq. 24's table as the lighting reads it (ocean.effective_fresnel = "table") against its CPU
+  // twin (EffectiveFresnelTable::lookup, bilinear in double) at the samples, between them and
+  // beyond the table (cos theta_v to 0 and 1, variances from 0 to 1e6, across from 0 to 4 times
+  // along). The GPU's bilinear weights have 8 bits on some hardware (1/256 of a cell's change; on
+  // llvmpipe they are floats): the bound is 1/256 of the table's largest step between neighbours.
+  const ocean::EffectiveFresnelTable& table = ocean::effective_fresnel_table();
+  double largest_step = 0.0;
+  for (int j = 0; j < table.sigma_size; ++j)
+    for (int i = 0; i + 1 < table.cos_size; ++i) {
+      const std::size_t k = 2 * (std::size_t(j) * table.cos_size + i);
+      largest_step =
+          std::max(largest_step, double(std::abs(table.values[k + 2] - table.values[k])));
+    }
+  std::vector<glm::vec4> inputs;
+  for (int j = 0; j <= 2 * (table.sigma_size - 1); ++j)
+    for (int i = 0; i <= 2 * (table.cos_size - 1); i += 3) {
+      const glm::dvec2 node = glsl::OceanEffectiveFresnelTableNode(0.5 * i, 0.5 * j);
+      const double along = node.y * node.y;
+      inputs.emplace_back(float(node.x), float(along), float((j % 5) * 0.5 * along), 0.0f);
+    }
+  for (float cos_theta : {0.0f, 1e-6f, 1e-3f, 0.5f, 1.0f})
+    for (float along : {0.0f, 1e-12f, 1e-4f, 0.25f, 1.0f, 1e6f})
+      inputs.emplace_back(cos_theta, along, along, 0.0f);
+  const ocean::EffectiveFresnelTexture texture;
+  const auto gpu = evaluate(12, inputs, [&](GLuint) { texture.bind(); });
+  Region region("effective Fresnel (eq. 24's table)", "samples, between and beyond",
+                largest_step / 256.0);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::dvec4 p(inputs[i]);
+    // The shader's along and across: eq. 25 of the variances raised to their floor.
+    const glm::dvec3 v(std::sqrt(std::max(1.0 - p.x * p.x, 0.0)), 0.0, p.x);
+    const glm::dvec2 s2 = glsl::OceanClampedSlopeVariance(glm::dvec2(p.y, p.z));
+    const double along = glsl::OceanSlopeVarianceToward(v, s2);
+    const double expected = table.lookup(p.x, along, s2.x + s2.y - along, 0.02);
+    region.add(
+        std::abs(gpu[i].x - expected),
+        Format("cos theta_v = %.3g", p.x) + Format(", along %g", p.y) + Format(", across %g", p.z));
   }
 }
 

@@ -16,6 +16,7 @@
 
 #include "reference_test_support.hpp"
 #include "ross_brdf_reference.hpp"
+#include "thalassa/ocean/effective_fresnel.hpp"
 #include "trochoids_reference.hpp"
 
 namespace thalassa::glsl {
@@ -490,6 +491,14 @@ double EffectiveFresnelByQuadrature(const vec3& v, const vec2& slope_variance, d
 // The measured worst and mean absolute errors of eq. 26 over the grid below, plus a 10 % margin.
 constexpr double kEffectiveFresnelWorstBound = 0.0375;  // measured 0.0339
 constexpr double kEffectiveFresnelMeanBound = 0.0038;   // measured 0.00343
+// The same for eq. 24's integrator against the rule here and for its table (measured + 10 %).
+// (Measured 4.1e-8, 2.5e-5 relative, 1.19e-3 worst and 1.49e-4 mean against eq. 24, 6.9e-4
+// between the samples.)
+constexpr double kEffectiveFresnelIntegratorBound = 1e-7;
+constexpr double kEffectiveFresnelDerivativeBound = 1e-4;
+constexpr double kEffectiveFresnelTableWorstBound = 1.3e-3;
+constexpr double kEffectiveFresnelTableMeanBound = 1.65e-4;
+constexpr double kEffectiveFresnelTableInterpolationBound = 7.6e-4;
 
 TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
   // Eq. 26 against eq. 24 over theta_v in [0, 89] deg and sigma_v^2 in [1e-4, 0.25], isotropic
@@ -591,6 +600,180 @@ TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
   // At sigma_v = 0 the fit is Schlick's formula, which eq. 24 becomes (q_vn^e -> Dirac).
   for (double cos_theta : {0.0, 0.3, 0.7, 1.0}) {
     EXPECT_DOUBLE_EQ(OceanEffectiveFresnel(cos_theta, 0.0, r), OceanSchlickFresnel(cos_theta, r));
+  }
+}
+
+// Eq. 24's own integrator (ocean/effective_fresnel.hpp: one rule, panels cut at the kink, the
+// normalisation summed by the same nodes) against the independent rule above (8-point panels,
+// the normalisation from Smith's Lambda, eq. 9, whose approximation errs by 3e-6 relative):
+// theta_v from 0 to 90 deg, sigma_v^2 from 1e-8 to 1, isotropic slopes and slopes a factor 2
+// apart (the view along the wind, where along and across are the axes' variances); its
+// derivative across against central differences of the value.
+TEST(RossBrdf, EffectiveFresnelIntegratorAgreesWithAnIndependentRule) {
+  const GaussLegendre rule = MakeGaussLegendre(8);
+  double worst = 0.0, worst_derivative = 0.0;
+  std::string where;
+  for (double ratio : {1.0, 0.5, 2.0}) {
+    for (double variance : {1e-8, 1e-6, 1e-4, 1e-3, 0.01, 0.03, 0.1, 0.3, 0.5}) {
+      for (double zenith_deg = 0.0; zenith_deg <= 90.0;
+           zenith_deg += zenith_deg < 80.0 ? 5.0 : 0.5) {
+        const vec3 v = TangentDirection(zenith_deg, 0.0);
+        const double across = ratio * variance;
+        const ocean::SchlickAverage ours =
+            ocean::effective_fresnel_schlick_average(v.z, variance, across);
+        const double independent =
+            EffectiveFresnelByQuadrature(v, vec2(variance, across), 0.0, rule);
+        ASSERT_TRUE(std::isfinite(ours.value) && std::isfinite(ours.across_derivative))
+            << variance << " " << zenith_deg;
+        const double error = std::abs(ours.value - independent);
+        if (error > worst) {
+          worst = error;
+          where = "sigma_v^2 " + std::to_string(variance) + ", ratio " + std::to_string(ratio) +
+                  ", theta_v " + std::to_string(zenith_deg);
+        }
+        // Differences of step h = across / 1000, where they resolve the change (from variances of
+        // 1e-6: below, the step is under the rule's resolution) within the clamp to 1.
+        const double h = 1e-3 * across;
+        if (variance < 1e-6 || across + h > 1.0) continue;
+        const double difference =
+            (ocean::effective_fresnel_schlick_average(v.z, variance, across + h).value -
+             ocean::effective_fresnel_schlick_average(v.z, variance, across - h).value) /
+            (2.0 * h);
+        worst_derivative =
+            std::max(worst_derivative, std::abs(ours.across_derivative - difference) /
+                                           std::max(std::abs(difference), 1e-3));
+      }
+    }
+  }
+  std::printf(
+      "eq. 24's integrator against the independent rule: worst %.2e at %s; its derivative "
+      "across against differences: %.2e relative\n",
+      worst, where.c_str(), worst_derivative);
+  EXPECT_LT(worst, kEffectiveFresnelIntegratorBound);
+  EXPECT_LT(worst_derivative, kEffectiveFresnelDerivativeBound);
+  // sigma_v -> 0: Schlick's factor, the Dirac's limit, and (1 - cos theta_v)^5 (5/2) cos theta_v
+  // ... its first change across: d/db E[(1 - mu / sqrt(1 + b s^2))^5] = 5/2 mu (1 - mu)^4 at b = 0.
+  for (double cos_theta : {0.0, 0.2, 0.5, 0.9, 1.0}) {
+    const ocean::SchlickAverage flat =
+        ocean::effective_fresnel_schlick_average(cos_theta, 0.0, 0.0);
+    EXPECT_NEAR(flat.value, std::pow(1.0 - cos_theta, 5.0), 1e-14) << cos_theta;
+    if (cos_theta > 0.0)
+      EXPECT_NEAR(flat.across_derivative, 2.5 * cos_theta * std::pow(1.0 - cos_theta, 4.0), 1e-12)
+          << cos_theta;
+    EXPECT_NEAR(ocean::effective_fresnel_schlick_average(cos_theta, 1e-12, 1e-12).value,
+                std::pow(1.0 - cos_theta, 5.0), 1e-5);
+  }
+}
+
+// The table that replaces eq. 26 where a scene asks for it (ocean.effective_fresnel = "table"),
+// read as the GPU reads it (bilinear), against eq. 24 by the independent rule, on the grid of
+// EffectiveFresnelFitAgainstEq24 (isotropic slopes, and anisotropic ones, which the table
+// reaches from isotropic ones to first order in the variance across the view) and on a finer one
+// at grazing views (theta_v from 80 to 89.9 deg by 0.1), where the fit errs most. The bounds are
+// the measured errors plus 10 %.
+TEST(RossBrdf, EffectiveFresnelTableAgainstEq24) {
+  const GaussLegendre rule = MakeGaussLegendre(6);
+  const double r = OCEAN_DEFAULT_FRESNEL_R;
+  const ocean::EffectiveFresnelTable& table = ocean::effective_fresnel_table();
+  ASSERT_EQ(table.cos_size, OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE);
+  ASSERT_EQ(table.sigma_size, OCEAN_EFFECTIVE_FRESNEL_TABLE_SIGMA_SIZE);
+  const std::vector<double> variances = {1e-4, 3e-4, 1e-3, 3e-3, 0.01, 0.03, 0.06, 0.1, 0.16, 0.25};
+  struct Config {
+    double ratio;  // sigma_y^2 / sigma_x^2
+    double azimuth_deg;
+  };
+  const std::vector<Config> configs = {
+      {1.0, 30.0}, {0.5, 0.0}, {0.5, 45.0}, {0.5, 90.0}, {2.0, 45.0}};
+  std::vector<double> zeniths;
+  for (int k = 0; k < 80; ++k) zeniths.push_back(k);
+  for (int k = 800; k < 900; ++k) zeniths.push_back(0.1 * k);
+  double worst_table = 0.0, worst_fit = 0.0, sum_table = 0.0, sum_fit = 0.0;
+  double worst_band[3] = {0, 0, 0}, worst_fit_band[3] = {0, 0, 0};
+  std::string where;
+  int count = 0;
+  for (const Config& config : configs) {
+    const double phi = config.azimuth_deg * DEGREE;
+    const double cos2 = std::cos(phi) * std::cos(phi);
+    for (double variance : variances) {
+      const double sigma_x2 = variance / (cos2 + config.ratio * (1.0 - cos2));
+      const vec2 slope_variance(sigma_x2, config.ratio * sigma_x2);
+      for (double zenith_deg : zeniths) {
+        const vec3 v = TangentDirection(zenith_deg, config.azimuth_deg);
+        const double view_variance = OceanSlopeVarianceToward(v, slope_variance);
+        const double exact = EffectiveFresnelByQuadrature(v, slope_variance, r, rule);
+        const double across = slope_variance.x + slope_variance.y - view_variance;
+        const double from_table = table.lookup(v.z, view_variance, across, r);
+        const double error = std::abs(from_table - exact);
+        const double fit_error = std::abs(OceanEffectiveFresnel(v.z, view_variance, r) - exact);
+        // 0: isotropic; anisotropic to 89 deg (the fit's grid) and beyond.
+        const int band = config.ratio == 1.0 ? 0 : zenith_deg <= 89.0 ? 1 : 2;
+        worst_band[band] = std::max(worst_band[band], error);
+        worst_fit_band[band] = std::max(worst_fit_band[band], fit_error);
+        if (error > worst_table) {
+          worst_table = error;
+          where = "sigma_v^2 " + std::to_string(variance) + ", theta_v " +
+                  std::to_string(zenith_deg) + ", ratio " + std::to_string(config.ratio) +
+                  ", phi " + std::to_string(config.azimuth_deg) + ": table " +
+                  std::to_string(from_table) + ", eq. 24 " + std::to_string(exact);
+        }
+        worst_fit = std::max(worst_fit, fit_error);
+        sum_table += error;
+        sum_fit += fit_error;
+        ++count;
+      }
+    }
+  }
+  std::printf(
+      "F-bar against eq. 24 over %d points: table worst %.2e mean %.2e (at %s); eq. 26 worst "
+      "%.4f mean %.5f\n",
+      count, worst_table, sum_table / count, where.c_str(), worst_fit, sum_fit / count);
+  std::printf(
+      "worst table / eq. 26: isotropic %.2e / %.4f, anisotropic to 89 deg %.2e / %.4f, beyond "
+      "%.2e / %.4f\n",
+      worst_band[0], worst_fit_band[0], worst_band[1], worst_fit_band[1], worst_band[2],
+      worst_fit_band[2]);
+  EXPECT_LT(worst_table, kEffectiveFresnelTableWorstBound);
+  EXPECT_LT(sum_table / count, kEffectiveFresnelTableMeanBound);
+  EXPECT_GT(worst_fit, 20.0 * worst_table);  // what the table is for
+}
+
+// The table between its samples, isotropic: bilinear in (sqrt(cos theta_v), sqrt(sigma_v)) against
+// eq. 24 at the centres of its cells and of their edges, where interpolation errs most; and its
+// limits: Schlick's factor at sigma_v = 0, R at normal incidence (to the slopes' own 1e-3), finite
+// values in [R, 1] for inputs out of range (cos theta_v < 0 or > 1, variances < 0 or > 1).
+TEST(RossBrdf, EffectiveFresnelTableBetweenItsSamples) {
+  const ocean::EffectiveFresnelTable& table = ocean::effective_fresnel_table();
+  const double r = OCEAN_DEFAULT_FRESNEL_R;
+  double worst = 0.0;
+  std::string where;
+  for (int j = 0; j + 1 < table.sigma_size; ++j) {
+    for (int i = 0; i + 1 < table.cos_size; ++i) {
+      for (const vec2& offset : {vec2(0.5, 0.5), vec2(0.5, 0.0), vec2(0.0, 0.5)}) {
+        const vec2 node = OceanEffectiveFresnelTableNode(i + offset.x, j + offset.y);
+        const double variance = node.y * node.y;
+        const double exact =
+            r +
+            (1.0 - r) * ocean::effective_fresnel_schlick_average(node.x, variance, variance).value;
+        const double error = std::abs(table.lookup(node.x, variance, variance, r) - exact);
+        if (error > worst) {
+          worst = error;
+          where = "cos theta_v " + std::to_string(node.x) + ", sigma_v " + std::to_string(node.y);
+        }
+      }
+    }
+  }
+  std::printf("table between its samples: worst %.2e at %s\n", worst, where.c_str());
+  EXPECT_LT(worst, kEffectiveFresnelTableInterpolationBound);
+  for (int i = 0; i < table.cos_size; ++i) {
+    const double cos_theta = OceanEffectiveFresnelTableNode(i, 0.0).x;
+    EXPECT_NEAR(table.lookup(cos_theta, 0.0, 0.0, r), OceanSchlickFresnel(cos_theta, r), 1e-7) << i;
+  }
+  EXPECT_NEAR(table.lookup(1.0, 0.25, 0.25, r), r, 2e-3);
+  for (double cos_theta : {-1.0, -1e-3, 0.0, 1e-6, 0.5, 1.0, 1.5}) {
+    for (double variance : {-1.0, 0.0, 1e-12, 0.04, 1.0, 1e6}) {
+      const double f = table.lookup(cos_theta, variance, 2.0 * variance, r);
+      EXPECT_TRUE(std::isfinite(f) && f >= r && f <= 1.0) << cos_theta << " " << variance;
+    }
   }
 }
 

@@ -92,7 +92,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   // scene (and with each variant) builds.
   std::set<std::tuple<double, double, double>> seen;
   std::set<double> grid_cells, waves;
-  std::set<std::string> filters;
+  std::set<std::string> filters, fresnels;
   for (const SuiteCase& c : suite.cases) {
     EXPECT_EQ(c.expected_exit, 0);
     EXPECT_EQ(c.methods.size(), suite.methods.size());
@@ -104,6 +104,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
       grid_cells.insert(s.ocean.grid_cell);
       waves.insert(s.ocean.waves);
       filters.insert(s.ocean.sky_filter);
+      fresnels.insert(s.ocean.effective_fresnel);
     }
   }
   EXPECT_EQ(seen.size(), 3u * 4u * 2u);
@@ -117,6 +118,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   EXPECT_EQ(grid_cells, (std::set<double>{4, 8, 16}));
   EXPECT_EQ(waves, (std::set<double>{30, 60, 120}));
   EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples"}));
+  EXPECT_EQ(fresnels, (std::set<std::string>{"fit", "table"}));
 }
 
 // thalassa validate --seas N: each case expected to render becomes N cases NAME_sea1 to NAME_seaN

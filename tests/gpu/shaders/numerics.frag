@@ -5,6 +5,10 @@
 // common to a sweep (a light direction, slope variances, a tangent frame), also as floats.
 #include "common/definitions.glsl"
 #include "ocean/ross_brdf.glsl"
+#if FUNCTION == 12
+#define EFFECTIVE_FRESNEL_TABLE 1
+#endif
+#include "ocean/effective_fresnel.glsl"
 #include "ocean/trochoids.glsl"
 #include "atmosphere/model.glsl"
 
@@ -87,5 +91,10 @@ void main() {
                 sin(TrochoidArgumentFrom(wave_vector, wave_phase, o, l + step)),
                 sin(TrochoidArgument(wave_vector, wave_phase, o + l)),
                 sin(TrochoidArgument(wave_vector, wave_phase, o + l + step)));
+#elif FUNCTION == 12
+  // F-bar from eq. 24's table (ocean.effective_fresnel = "table"), v = (sqrt(1 - p.x^2), 0, p.x)
+  // in the tangent frame (toward the wind: along = p.y, across = p.z).
+  const vec3 v = vec3(sqrt(max(1.0 - p.x * p.x, 0.0)), 0.0, p.x);
+  result = vec4(OceanSceneEffectiveFresnel(v, vec2(p.y, p.z), 0.02), 0.0, 0.0, 0.0);
 #endif
 }

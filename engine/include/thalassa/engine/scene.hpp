@@ -83,6 +83,9 @@ struct OceanSettings {
   // The sky reflection's filter: "texture_grad" (eq. 27), "nine_samples" (sec. 7.2) or "shrm"
   // (sky maps prefiltered in spherical harmonics, Ramamoorthi & Hanrahan 2002).
   std::string sky_filter = "texture_grad";
+  // The effective Fresnel reflectance of the sky and refracted terms: "fit" (the paper's eq. 26)
+  // or "table" (eq. 24 itself, tabulated; docs/ocean_fresnel.md).
+  std::string effective_fresnel = "fit";
 };
 
 struct SkySettings {
