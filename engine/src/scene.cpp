@@ -269,7 +269,7 @@ const std::vector<KeyDesc>& key_table() {
           "ocean.effective_fresnel", {"fit", "table"}, "\"fit\"",
           "Effective Fresnel reflectance of the reflected sky and the refracted light: the "
           "paper's fit (eq. 26) or eq. 24 itself, integrated in double and read from a table "
-          "(0.034 closer at grazing views; docs/ocean_fresnel.md)."),
+          "(within 1.2e-3 of it where the fit errs by up to 0.061; docs/ocean_fresnel.md)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),
