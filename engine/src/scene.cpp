@@ -270,6 +270,12 @@ const std::vector<KeyDesc>& key_table() {
           "Effective Fresnel reflectance of the reflected sky and the refracted light: the "
           "paper's fit (eq. 26) or eq. 24 itself, integrated in double and read from a table "
           "(within 1.2e-3 of it where the fit errs by up to 0.061; docs/ocean_fresnel.md)."),
+      choice<&S::ocean, &OceanSettings::sky_lobe_centre>(
+          "ocean.sky_lobe_centre", {"mirror", "fresnel_weighted"}, "\"mirror\"",
+          "Where the filtered sky reflection is centred: the mirror direction of the mean normal "
+          "(eq. 27) or that of the visible facets' mean slope weighted by their Fresnel "
+          "reflectance, which eq. 21's product of averages leaves out "
+          "(docs/ocean_fresnel.md)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),

@@ -19,6 +19,9 @@ constexpr std::array<double, 3> kWeights = {
 // 1.2e-15 of it).
 constexpr double kHalfWidth = 8.0;
 constexpr double kInvSqrt2Pi = 0.39894228040143267793994605993;
+// sin theta_v at which the table's mean slopes over sin theta_v stand for their limit at normal
+// view (their relative change from there to 0 is of order this squared).
+constexpr double kNearNormalSine = 1e-3;
 
 // Calls g(t, w) at the nodes and weights of panels of width at most 1 spanning [a, b].
 template <typename G>
@@ -48,16 +51,18 @@ SchlickAverage effective_fresnel_schlick_average(double cos_theta_v, double alon
   // the same nodes (it is cos theta_v (1 + Lambda_v), eq. 11), so that the average is a ratio of
   // two sums of one rule.
   const double sin_theta = std::sqrt(std::max(1.0 - mu * mu, 0.0));
-  if (mu == 0.0 && sigma == 0.0) return {1.0, 0.0};  // a flat sea seen edge-on: v.f -> 0
+  if (mu == 0.0 && sigma == 0.0) return {1.0, 0.0, 0.0, 0.0};  // a flat sea seen edge-on: v.f -> 0
   const double s_max = sin_theta * sigma > mu / kHalfWidth
                            ? std::min(kHalfWidth, mu / (sin_theta * sigma))
                            : kHalfWidth;
   double weighted = 0.0, weighted_derivative = 0.0, facing_area = 0.0;
+  double mean_s1 = 0.0, weighted_s1 = 0.0;
   for_each_node(-kHalfWidth, s_max, [&](double s1, double w1) {
     const double facing = mu - sin_theta * sigma * s1;  // v.f / f_z
     if (facing <= 0.0) return;
     const double p1 = w1 * kInvSqrt2Pi * std::exp(-0.5 * s1 * s1) * facing;
     facing_area += p1;
+    mean_s1 += p1 * s1;
     // Across the view's azimuth the integrand is even in s2: twice [0, kHalfWidth].
     double across_sum = 0.0, across_derivative = 0.0;
     for_each_node(0.0, kHalfWidth, [&](double s2, double w2) {
@@ -71,27 +76,38 @@ SchlickAverage effective_fresnel_schlick_average(double cos_theta_v, double alon
       across_derivative += weight * 5.0 * x4 * facing * s2 * s2 / (2.0 * inverse_fz2 * inverse_fz);
     });
     weighted += p1 * across_sum;
+    weighted_s1 += p1 * s1 * across_sum;
     weighted_derivative += p1 * across_derivative;
   });
-  if (!(facing_area > 0.0)) return {1.0, 0.0};
-  return {std::clamp(weighted / facing_area, 0.0, 1.0), weighted_derivative / facing_area};
+  if (!(facing_area > 0.0)) return {1.0, 0.0, 0.0, 0.0};
+  return {std::clamp(weighted / facing_area, 0.0, 1.0), weighted_derivative / facing_area,
+          sigma * mean_s1 / facing_area, sigma * weighted_s1 / facing_area};
 }
 
-double EffectiveFresnelTable::lookup(double cos_theta_v, double along, double across,
-                                     double fresnel_r) const {
+glm::dvec4 EffectiveFresnelTable::sample(double cos_theta_v, double along) const {
   const glm::dvec2 position = glsl::OceanEffectiveFresnelTablePosition(cos_theta_v, along);
   const int i = std::clamp(static_cast<int>(position.x), 0, cos_size - 2);
   const int j = std::clamp(static_cast<int>(position.y), 0, sigma_size - 2);
   const double fx = position.x - i, fy = position.y - j;
-  auto at = [&](int x, int y, int channel) {
-    return double(values[2 * (std::size_t(y) * cos_size + x) + channel]);
+  auto at = [&](int x, int y) {
+    const float* texel = &values[4 * (std::size_t(y) * cos_size + x)];
+    return glm::dvec4(texel[0], texel[1], texel[2], texel[3]);
   };
-  auto bilinear = [&](int channel) {
-    return (1.0 - fy) * ((1.0 - fx) * at(i, j, channel) + fx * at(i + 1, j, channel)) +
-           fy * ((1.0 - fx) * at(i, j + 1, channel) + fx * at(i + 1, j + 1, channel));
-  };
-  return glsl::OceanEffectiveFresnelFromTable(glm::dvec2(bilinear(0), bilinear(1)), along, across,
+  return (1.0 - fy) * ((1.0 - fx) * at(i, j) + fx * at(i + 1, j)) +
+         fy * ((1.0 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
+}
+
+double EffectiveFresnelTable::lookup(double cos_theta_v, double along, double across,
+                                     double fresnel_r) const {
+  return glsl::OceanEffectiveFresnelFromTable(glm::dvec2(sample(cos_theta_v, along)), along, across,
                                               fresnel_r);
+}
+
+double EffectiveFresnelTable::fresnel_weighted_mean_slope(double cos_theta_v, double along,
+                                                          double fresnel_r) const {
+  const double mu = std::clamp(cos_theta_v, 0.0, 1.0);
+  return glsl::OceanFresnelWeightedMeanSlope(sample(mu, along), std::sqrt(1.0 - mu * mu),
+                                             fresnel_r);
 }
 
 const EffectiveFresnelTable& effective_fresnel_table() {
@@ -99,16 +115,27 @@ const EffectiveFresnelTable& effective_fresnel_table() {
     EffectiveFresnelTable t;
     t.cos_size = glsl::OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE;
     t.sigma_size = glsl::OCEAN_EFFECTIVE_FRESNEL_TABLE_SIGMA_SIZE;
-    t.values.resize(2 * std::size_t(t.cos_size) * t.sigma_size);
+    t.values.resize(4 * std::size_t(t.cos_size) * t.sigma_size);
     for (int j = 0; j < t.sigma_size; ++j) {
       for (int i = 0; i < t.cos_size; ++i) {
         const glm::dvec2 node = glsl::OceanEffectiveFresnelTableNode(i, j);
         const double variance = node.y * node.y;
         const SchlickAverage average =
             effective_fresnel_schlick_average(node.x, variance, variance);
-        const std::size_t k = 2 * (std::size_t(j) * t.cos_size + i);
+        // The mean slopes over sin theta_v, smooth at normal view (where both vanish): there the
+        // limit, the ratio at kNearNormalSine.
+        const double sine = std::sqrt(std::max(1.0 - node.x * node.x, 0.0));
+        const bool normal = sine < kNearNormalSine;
+        const SchlickAverage slopes =
+            normal ? effective_fresnel_schlick_average(
+                         std::sqrt(1.0 - kNearNormalSine * kNearNormalSine), variance, variance)
+                   : average;
+        const double slope_sine = normal ? kNearNormalSine : sine;
+        const std::size_t k = 4 * (std::size_t(j) * t.cos_size + i);
         t.values[k] = static_cast<float>(average.value);
         t.values[k + 1] = static_cast<float>(average.across_derivative);
+        t.values[k + 2] = static_cast<float>(slopes.mean_slope / slope_sine);
+        t.values[k + 3] = static_cast<float>(slopes.schlick_mean_slope / slope_sine);
       }
     }
     return t;

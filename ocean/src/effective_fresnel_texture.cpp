@@ -6,8 +6,8 @@ namespace thalassa::ocean {
 
 EffectiveFresnelTexture::EffectiveFresnelTexture() : texture_(gl::make_texture(GL_TEXTURE_2D)) {
   const EffectiveFresnelTable& table = effective_fresnel_table();
-  glTextureStorage2D(texture_.get(), 1, GL_RG32F, table.cos_size, table.sigma_size);
-  glTextureSubImage2D(texture_.get(), 0, 0, 0, table.cos_size, table.sigma_size, GL_RG, GL_FLOAT,
+  glTextureStorage2D(texture_.get(), 1, GL_RGBA32F, table.cos_size, table.sigma_size);
+  glTextureSubImage2D(texture_.get(), 0, 0, 0, table.cos_size, table.sigma_size, GL_RGBA, GL_FLOAT,
                       table.values.data());
   // Bilinear between the samples (EffectiveFresnelTable::lookup is its CPU twin); the shader
   // clamps its coordinates to the samples' centres, so the edges never blend with a border.

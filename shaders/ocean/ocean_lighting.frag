@@ -57,13 +57,14 @@ uniform float horizon_distance;       // m: the sea's horizon, for rays that mis
 // exact for its average of polynomials up to degree 5. Each node reads the map at its exact
 // u(v, zeta) (OceanSkyMapCoordinates, not the linearisation eq. 27 assumes) with a footprint of
 // one sigma, so that the nodes' footprints together cover the kernel.
-vec3 SkyNineSamples(vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 sigma, vec2 du_x, vec2 du_y) {
+vec3 SkyNineSamples(vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 centre, vec2 sigma, vec2 du_x,
+                    vec2 du_y) {
   const float node = sqrt(3.0);
   const float weights[3] = float[3](1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0);
   vec3 sum = vec3(0.0);
   for (int j = 0; j < 3; ++j) {
     for (int i = 0; i < 3; ++i) {
-      vec2 zeta = vec2(float(i - 1), float(j - 1)) * node * sigma;
+      vec2 zeta = centre + vec2(float(i - 1), float(j - 1)) * node * sigma;
       vec2 u = OceanSkyMapCoordinates(v, t_x, t_y, n, zeta);
       sum += weights[i] * weights[j] * SkyMapRadianceGrad(u, sigma.x * du_x, sigma.y * du_y);
     }
@@ -133,13 +134,19 @@ void main() {
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
+  // The lobe's centre in slope space: 0 (eq. 27), or with ocean.sky_lobe_centre =
+  // "fresnel_weighted" the visible facets' Fresnel-weighted mean slope.
+  const vec2 centre = OceanSceneSkyLobeCentre(v_t, slope_variance, fresnel_r);
+#ifdef SKY_LOBE_FRESNEL_WEIGHTED
+  u0 += centre.x * du_x + centre.y * du_y;
+#endif
 #ifdef SKY_NINE_SAMPLES
-  vec3 sky = SkyNineSamples(v, t_x, t_y, n, sigma, du_x, du_y);
+  vec3 sky = SkyNineSamples(v, t_x, t_y, n, centre, sigma, du_x, du_y);
 #else
   vec3 sky = SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
 #endif
 #ifdef SKY_MAP_ARRAY
-  sky = mix(sky, OceanSkyArrayReflection(up, v, t_x, t_y, n, sigma, sun),
+  sky = mix(sky, OceanSkyArrayReflection(up, v, t_x, t_y, n, centre, sigma, sun),
             sky_array_weight);
 #endif
   sea += fresnel * sky;

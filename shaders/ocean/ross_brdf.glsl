@@ -525,6 +525,19 @@ Number OceanEffectiveFresnelFromTable(IN(vec2) table_sample, IN(Number) along, I
   return fresnel_r + (1.0 - fresnel_r) * average;
 }
 
+// The mean slope toward the view's azimuth of the visible facets weighted by their Schlick
+// reflectance, E_q[F zeta.e] / E_q[F] (dimensionless, F = R + (1 - R) (1 - v.f)^5, e the view's
+// horizontal direction), from the table's sample (I, dI/db, E_q[zeta.e] / sin theta_v,
+// E_q[(1 - v.f)^5 zeta.e] / sin theta_v: both vanish as sin theta_v at normal view, and their
+// ratios to it are smooth there), sin theta_v = sin_theta_v and R = fresnel_r: where eq. 21's
+// product F-bar L-bar centres the sky's lobe (eq. 27's mirror direction of the mean normal,
+// slope 0), the light the facets send is centred here.
+Number OceanFresnelWeightedMeanSlope(IN(vec4) table_sample, IN(Number) sin_theta_v,
+                                     IN(Number) fresnel_r) {
+  Number weight = fresnel_r + (1.0 - fresnel_r) * table_sample.x;
+  return sin_theta_v * (fresnel_r * table_sample.z + (1.0 - fresnel_r) * table_sample.w) / weight;
+}
+
 // 1 + r_z (dimensionless), the denominator of the stereographic mapping, for a unit r. Near the
 // nadir (r_z -> -1) the sum 1 + r_z ~ eps^2 / 2 (eps the angle from the nadir) cancels: an error
 // of r_z's last bit (6e-8 in float, 1.1e-16 in double) becomes a relative error 2 ulp / eps^2 of

@@ -23,13 +23,20 @@ vec3 OceanTangentToward(vec3 n, vec3 preferred, vec3 fallback) {
 #ifdef SKY_MAP_ARRAY
 // up: the sea's normal at rest at the point (its local vertical); v toward the eye; t_x, t_y, n
 // the shading tangent frame (Algorithm 5.1); sigma the slope standard deviations along t_x, t_y;
-// sun toward the sun. All unit vectors in one frame (the nadir frame).
-vec3 OceanSkyArrayReflection(vec3 up, vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 sigma, vec3 sun) {
+// sun toward the sun. All unit vectors in one frame (the nadir frame). With
+// SKY_LOBE_FRESNEL_WEIGHTED the lobe is centred on the slope `centre` (along t_x, t_y;
+// ocean/effective_fresnel.glsl, OceanSceneSkyLobeCentre) instead of the mean normal's mirror
+// direction.
+vec3 OceanSkyArrayReflection(vec3 up, vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 centre, vec2 sigma,
+                             vec3 sun) {
   const vec3 map_north = OceanTangentToward(up, sun, t_x);
   const vec3 map_east = cross(map_north, up);
   const mat3 to_map = transpose(mat3(map_east, map_north, up));
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(to_map * v, to_map * t_x, to_map * t_y, to_map * n, u0, du_x, du_y);
+#ifdef SKY_LOBE_FRESNEL_WEIGHTED
+  u0 += centre.x * du_x + centre.y * du_y;
+#endif
   return SkyMapArrayRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y,
                                  SkyMapArrayLayer(dot(up, sun)));
 }

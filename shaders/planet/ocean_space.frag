@@ -59,7 +59,9 @@ void main() {
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
-  sea += fresnel * OceanSkyArrayReflection(n, v, t_x, t_y, n, sigma, sun);
+  sea += fresnel * OceanSkyArrayReflection(
+                       n, v, t_x, t_y, n, OceanSceneSkyLobeCentre(v_t, slope_variance, fresnel_r),
+                       sigma, sun);
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);

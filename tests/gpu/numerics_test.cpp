@@ -412,9 +412,9 @@ TEST_F(GpuNumericsTest, EffectiveFresnelTable) {
   double largest_step = 0.0;
   for (int j = 0; j < table.sigma_size; ++j)
     for (int i = 0; i + 1 < table.cos_size; ++i) {
-      const std::size_t k = 2 * (std::size_t(j) * table.cos_size + i);
+      const std::size_t k = 4 * (std::size_t(j) * table.cos_size + i);
       largest_step =
-          std::max(largest_step, double(std::abs(table.values[k + 2] - table.values[k])));
+          std::max(largest_step, double(std::abs(table.values[k + 4] - table.values[k])));
     }
   std::vector<glm::vec4> inputs;
   for (int j = 0; j <= 2 * (table.sigma_size - 1); ++j)
@@ -430,6 +430,9 @@ TEST_F(GpuNumericsTest, EffectiveFresnelTable) {
   const auto gpu = evaluate(12, inputs, [&](GLuint) { texture.bind(); });
   Region region("effective Fresnel (eq. 24's table)", "samples, between and beyond",
                 largest_step / 256.0);
+  // The lobe's centre (ocean.sky_lobe_centre = "fresnel_weighted"), a slope along the view
+  // (x here): within 1e-5 of the CPU twin's, and 0 across.
+  Region centre("sky lobe's centre (the table's)", "samples, between and beyond", 1e-5);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::dvec4 p(inputs[i]);
     // The shader's along and across: eq. 25 of the variances raised to their floor.
@@ -437,9 +440,11 @@ TEST_F(GpuNumericsTest, EffectiveFresnelTable) {
     const glm::dvec2 s2 = glsl::OceanClampedSlopeVariance(glm::dvec2(p.y, p.z));
     const double along = glsl::OceanSlopeVarianceToward(v, s2);
     const double expected = table.lookup(p.x, along, s2.x + s2.y - along, 0.02);
-    region.add(
-        std::abs(gpu[i].x - expected),
-        Format("cos theta_v = %.3g", p.x) + Format(", along %g", p.y) + Format(", across %g", p.z));
+    const std::string where =
+        Format("cos theta_v = %.3g", p.x) + Format(", along %g", p.y) + Format(", across %g", p.z);
+    region.add(std::abs(gpu[i].x - expected), where);
+    const double slope = v.x > 0.0 ? table.fresnel_weighted_mean_slope(p.x, along, 0.02) : 0.0;
+    centre.add(std::max(std::abs(gpu[i].y - slope), std::abs(double(gpu[i].z))), where);
   }
 }
 

@@ -499,6 +499,12 @@ constexpr double kEffectiveFresnelDerivativeBound = 1e-4;
 constexpr double kEffectiveFresnelTableWorstBound = 1.3e-3;
 constexpr double kEffectiveFresnelTableMeanBound = 1.65e-4;
 constexpr double kEffectiveFresnelTableInterpolationBound = 7.6e-4;
+// The visible mean slopes (measured 4.4e-12 against Stein's lemma, 3.6e-8 against the 2D rule,
+// in sigma_v) and the table's Fresnel-weighted one between its samples (1.09e-2 sigma_v, 1.08e-3
+// absolute).
+constexpr double kVisibleMeanSlopeBound = 1e-7;
+constexpr double kFresnelWeightedSlopeTableBound = 0.012;
+constexpr double kFresnelWeightedSlopeTableAbsoluteBound = 1.2e-3;
 
 TEST(RossBrdf, EffectiveFresnelFitAgainstEq24) {
   // Eq. 26 against eq. 24 over theta_v in [0, 89] deg and sigma_v^2 in [1e-4, 0.25], isotropic
@@ -663,6 +669,88 @@ TEST(RossBrdf, EffectiveFresnelIntegratorAgreesWithAnIndependentRule) {
     EXPECT_NEAR(ocean::effective_fresnel_schlick_average(cos_theta, 1e-12, 1e-12).value,
                 std::pow(1.0 - cos_theta, 5.0), 1e-5);
   }
+}
+
+// The visible facets' mean slopes that centre the sky's lobe (ocean.sky_lobe_centre =
+// "fresnel_weighted"). Their plain mean toward the view has a closed form by Stein's lemma: with
+// s standard normal, a = cos theta_v and b = sin theta_v sigma_v, E[(a - b s)_+ s] = -b Phi(a/b)
+// and E[(a - b s)_+] = a Phi(a/b) + b phi(a/b) (eq. 11's normalisation), so E_q[zeta.e] =
+// -sigma_v b Phi / (a Phi + b phi): the integrator's is checked against it; the Schlick-weighted
+// one against the independent 2D rule; and the table's Fresnel-weighted mean slope, as the GPU
+// reads it, against the integrator between its samples.
+TEST(RossBrdf, VisibleMeanSlopesAgainstSteinsLemmaAndAnIndependentRule) {
+  const GaussLegendre rule = MakeGaussLegendre(8);
+  double worst_mean = 0.0, worst_weighted = 0.0;
+  for (double variance : {1e-6, 1e-4, 1e-3, 0.01, 0.03, 0.1, 0.3, 1.0}) {
+    const double sigma = std::sqrt(variance);
+    for (double zenith_deg = 0.0; zenith_deg <= 90.0; zenith_deg += zenith_deg < 80.0 ? 5.0 : 0.5) {
+      const vec3 v = TangentDirection(zenith_deg, 0.0);
+      const ocean::SchlickAverage ours =
+          ocean::effective_fresnel_schlick_average(v.z, variance, variance);
+      const double a = v.z, b = v.x * sigma;
+      double closed = 0.0;
+      if (b > 0.0) {
+        const double c = a / b;
+        const double phi = std::exp(-0.5 * c * c) / std::sqrt(2.0 * M_PI);
+        const double cdf = 0.5 * std::erfc(-c / std::sqrt(2.0));
+        closed = -sigma * b * cdf / (a * cdf + b * phi);
+      }
+      worst_mean = std::max(worst_mean, std::abs(ours.mean_slope - closed) / sigma);
+      const vec2 s2(variance, variance);
+      const double facing_area = OceanSmithFacingAreaToward(v, s2);
+      const double weighted =
+          IntegrateOverVisibleSlopes(
+              v, s2,
+              [&](const vec2& zeta) {
+                const double facing = v.z - v.x * zeta.x;
+                if (facing <= 0.0) return 0.0;
+                const double x = 1.0 - facing / std::sqrt(1.0 + dot(zeta, zeta));
+                return OceanSlopePdf(zeta, s2) * facing * x * x * x * x * x * zeta.x;
+              },
+              rule, 7.0) /
+          facing_area;
+      if (v.x > 0.0)
+        worst_weighted =
+            std::max(worst_weighted, std::abs(ours.schlick_mean_slope - weighted) / sigma);
+    }
+  }
+  std::printf(
+      "visible mean slope against Stein's lemma: %.2e; Schlick-weighted against the 2D rule: %.2e "
+      "(in sigma_v)\n",
+      worst_mean, worst_weighted);
+  EXPECT_LT(worst_mean, kVisibleMeanSlopeBound);
+  EXPECT_LT(worst_weighted, kVisibleMeanSlopeBound);
+
+  // The table's Fresnel-weighted mean slope between its samples: in units of sigma_v where the
+  // lobe is at least 0.01 wide (the sky map's filter footprint there is many texels), absolute
+  // (slope) everywhere.
+  const ocean::EffectiveFresnelTable& table = ocean::effective_fresnel_table();
+  const double r = OCEAN_DEFAULT_FRESNEL_R;
+  double worst_relative = 0.0, worst_absolute = 0.0;
+  std::string where;
+  for (int j = 0; j + 1 < table.sigma_size; ++j) {
+    for (int i = 0; i + 1 < table.cos_size; ++i) {
+      const vec2 node = OceanEffectiveFresnelTableNode(i + 0.5, j + 0.5);
+      const double variance = node.y * node.y;
+      const ocean::SchlickAverage exact =
+          ocean::effective_fresnel_schlick_average(node.x, variance, variance);
+      const double expected = (r * exact.mean_slope + (1.0 - r) * exact.schlick_mean_slope) /
+                              (r + (1.0 - r) * exact.value);
+      const double error =
+          std::abs(table.fresnel_weighted_mean_slope(node.x, variance, r) - expected);
+      worst_absolute = std::max(worst_absolute, error);
+      if (node.y >= 0.01 && error / node.y > worst_relative) {
+        worst_relative = error / node.y;
+        where = "cos theta_v " + std::to_string(node.x) + ", sigma_v " + std::to_string(node.y);
+      }
+    }
+  }
+  std::printf(
+      "the table's Fresnel-weighted mean slope between its samples: %.2e sigma_v (sigma_v >= "
+      "0.01; at %s), %.2e absolute\n",
+      worst_relative, where.c_str(), worst_absolute);
+  EXPECT_LT(worst_relative, kFresnelWeightedSlopeTableBound);
+  EXPECT_LT(worst_absolute, kFresnelWeightedSlopeTableAbsoluteBound);
 }
 
 // The table that replaces eq. 26 where a scene asks for it (ocean.effective_fresnel = "table"),

@@ -655,6 +655,7 @@ TEST(SceneKeys, ListsEveryKeyOnce) {
                                           "ocean.deep_reflectance_g",
                                           "ocean.deep_reflectance_b",
                                           "ocean.effective_fresnel",
+                                          "ocean.sky_lobe_centre",
                                           "sky.model",
                                           "sky.exr"};
   std::set<std::string> seen;

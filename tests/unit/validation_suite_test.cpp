@@ -92,7 +92,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   // scene (and with each variant) builds.
   std::set<std::tuple<double, double, double>> seen;
   std::set<double> grid_cells, waves;
-  std::set<std::string> filters, fresnels;
+  std::set<std::string> filters, fresnels, lobes;
   for (const SuiteCase& c : suite.cases) {
     EXPECT_EQ(c.expected_exit, 0);
     EXPECT_EQ(c.methods.size(), suite.methods.size());
@@ -105,6 +105,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
       waves.insert(s.ocean.waves);
       filters.insert(s.ocean.sky_filter);
       fresnels.insert(s.ocean.effective_fresnel);
+      lobes.insert(s.ocean.sky_lobe_centre);
     }
   }
   EXPECT_EQ(seen.size(), 3u * 4u * 2u);
@@ -119,6 +120,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
   EXPECT_EQ(waves, (std::set<double>{30, 60, 120}));
   EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples"}));
   EXPECT_EQ(fresnels, (std::set<std::string>{"fit", "table"}));
+  EXPECT_EQ(lobes, (std::set<std::string>{"mirror", "fresnel_weighted"}));
 }
 
 // thalassa validate --seas N: each case expected to render becomes N cases NAME_sea1 to NAME_seaN

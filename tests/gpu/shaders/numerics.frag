@@ -7,6 +7,7 @@
 #include "ocean/ross_brdf.glsl"
 #if FUNCTION == 12
 #define EFFECTIVE_FRESNEL_TABLE 1
+#define SKY_LOBE_FRESNEL_WEIGHTED 1
 #endif
 #include "ocean/effective_fresnel.glsl"
 #include "ocean/trochoids.glsl"
@@ -95,6 +96,7 @@ void main() {
   // F-bar from eq. 24's table (ocean.effective_fresnel = "table"), v = (sqrt(1 - p.x^2), 0, p.x)
   // in the tangent frame (toward the wind: along = p.y, across = p.z).
   const vec3 v = vec3(sqrt(max(1.0 - p.x * p.x, 0.0)), 0.0, p.x);
-  result = vec4(OceanSceneEffectiveFresnel(v, vec2(p.y, p.z), 0.02), 0.0, 0.0, 0.0);
+  result = vec4(OceanSceneEffectiveFresnel(v, vec2(p.y, p.z), 0.02),
+                OceanSceneSkyLobeCentre(v, vec2(p.y, p.z), 0.02), 0.0);
 #endif
 }

@@ -86,6 +86,10 @@ struct OceanSettings {
   // The effective Fresnel reflectance of the sky and refracted terms: "fit" (the paper's eq. 26)
   // or "table" (eq. 24 itself, tabulated; docs/ocean_fresnel.md).
   std::string effective_fresnel = "fit";
+  // Where the reflected sky's lobe is centred: "mirror" (eq. 27: the mirror direction of the mean
+  // normal) or "fresnel_weighted" (the visible facets' Fresnel-weighted mean slope;
+  // ocean_fresnel.md).
+  std::string sky_lobe_centre = "mirror";
 };
 
 struct SkySettings {

@@ -6,6 +6,8 @@
 
 #include <vector>
 
+#include <glm/vec4.hpp>
+
 namespace thalassa::ocean {
 
 // The Schlick factor (1 - v.f)^5 averaged over the facets visible from v (eq. 24's integral):
@@ -21,6 +23,11 @@ namespace thalassa::ocean {
 struct SchlickAverage {
   double value = 0.0;              // I
   double across_derivative = 0.0;  // dI / d(across)
+  // The visible facets' mean slope toward the view's azimuth, integral q_vn^e zeta.e (e the
+  // view's horizontal direction: negative, the facets facing the eye), and the same weighted by
+  // the Schlick factor, integral q_vn^e (1 - v.f)^5 zeta.e; dimensionless.
+  double mean_slope = 0.0;
+  double schlick_mean_slope = 0.0;
 };
 SchlickAverage effective_fresnel_schlick_average(double cos_theta_v, double along, double across);
 
@@ -30,7 +37,8 @@ SchlickAverage effective_fresnel_schlick_average(double cos_theta_v, double alon
 //   I(cos theta_v, a, b) ~ I(cos theta_v, a, a) + (b - a) dI/db(cos theta_v, a, a).
 // OCEAN_EFFECTIVE_FRESNEL_TABLE_COS_SIZE x _SIGMA_SIZE samples at the nodes of
 // OceanEffectiveFresnelTableNode (shaders/ocean/ross_brdf.glsl), row-major with cos theta_v along
-// a row, two floats each (I, dI/db: a GL_RG32F texture's texels).
+// a row, four floats each (I, dI/db and SchlickAverage's two mean slopes over sin theta_v: a
+// GL_RGBA32F texture's texels).
 struct EffectiveFresnelTable {
   int cos_size = 0;
   int sigma_size = 0;
@@ -41,6 +49,13 @@ struct EffectiveFresnelTable {
   // bilinear between the samples as GL_LINEAR reads the texture (at
   // OceanEffectiveFresnelTablePosition), in double: the CPU twin of OceanSceneEffectiveFresnel.
   double lookup(double cos_theta_v, double along, double across, double fresnel_r) const;
+  // The visible facets' Fresnel-weighted mean slope toward the view's azimuth (dimensionless),
+  // read as the GPU reads it: the CPU twin of OceanFresnelWeightedMeanSlope at the table's
+  // bilinear sample (ocean.sky_lobe_centre = "fresnel_weighted").
+  double fresnel_weighted_mean_slope(double cos_theta_v, double along, double fresnel_r) const;
+
+ private:
+  glm::dvec4 sample(double cos_theta_v, double along) const;
 };
 
 // The table, computed once per process on first use (about 0.2 s; thread-safe).
