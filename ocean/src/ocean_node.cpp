@@ -1066,7 +1066,7 @@ class OceanNode final : public gl::Node {
   OceanNodeOptions options_;
   std::shared_ptr<atmosphere::SkyProvider> provider_;
   std::unique_ptr<atmosphere::GlossySkyMaps> glossy_sky_;  // only with sky_shrm
-  std::unique_ptr<EffectiveFresnelTexture> effective_fresnel_;  // only with eq. 24's table
+  std::unique_ptr<EffectiveFresnelTexture> effective_fresnel_;  // with the table or the lobe
   std::unique_ptr<LocalFeatureBuffers> local_features_;    // only with wakes or calm areas
   WaveSet waves_;
   gl::Buffer wave_buffer_;

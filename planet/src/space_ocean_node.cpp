@@ -101,7 +101,8 @@ class SpaceOceanNode final : public gl::Node {
   SpaceOceanNodeOptions options_;
   ocean::WaveSet waves_;
   std::unique_ptr<ocean::LocalFeatureBuffers> local_features_;  // only with wakes or calm areas
-  std::unique_ptr<ocean::EffectiveFresnelTexture> effective_fresnel_;  // only with eq. 24's table
+  // Only with eq. 24's table or the Fresnel-weighted sky lobe.
+  std::unique_ptr<ocean::EffectiveFresnelTexture> effective_fresnel_;
 };
 
 }  // namespace

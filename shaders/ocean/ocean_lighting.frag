@@ -3,11 +3,13 @@
 // unresolved slope variance), the sun (eq. 15), the sky (eq. 21 with the effective Fresnel of
 // eq. 26 and the filtered sky-map fetch of eq. 27) and the refracted light (eq. 28), all from
 // the sky provider (atmosphere/sky_provider.glsl), then the aerial perspective between the
-// camera and the sea (EFFECTIVE_FRESNEL_TABLE: eq. 24's table for eq. 26, ocean/effective_fresnel.glsl). SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
+// camera and the sea. SUN_GLINT, SKY_TERM, SEA_TERM and AIR_TERM (the in-scattered light) select
 // the terms (validation renders them one by one); SKY_NINE_SAMPLES replaces eq. 27's single
 // anisotropic fetch with the average of nine samples inside the filter's support that the paper
 // mentions (sec. 7.2); SKY_SHRM replaces it with a lookup in sky maps prefiltered in frequency
-// space (Ramamoorthi & Hanrahan 2002; atmosphere/sky_shrm.glsl). With UNDERWATER
+// space (Ramamoorthi & Hanrahan 2002; atmosphere/sky_shrm.glsl). EFFECTIVE_FRESNEL_TABLE reads
+// eq. 24 from a table for eq. 26, SKY_LOBE_FRESNEL_WEIGHTED centres eq. 27's lobe on the visible
+// facets' Fresnel-weighted mean slope (ocean/effective_fresnel.glsl). With UNDERWATER
 // (a camera below the surface) the water body's light fills the view and no G-buffer is read.
 #include "common/definitions.glsl"
 #include "common/frame.glsl"

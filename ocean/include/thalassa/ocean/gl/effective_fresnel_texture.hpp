@@ -1,7 +1,8 @@
 // thalassa — the effective Fresnel table on the GPU (GL layer, not installed): eq. 24 of Bruneton,
 // Neyret & Holzschuch 2010 tabulated in double (ocean/effective_fresnel.hpp) as a float texture
-// that shaders/ocean/effective_fresnel.glsl reads with EFFECTIVE_FRESNEL_TABLE defined (scenes
-// with ocean.effective_fresnel = "table"; the others create none of it).
+// that shaders/ocean/effective_fresnel.glsl reads with EFFECTIVE_FRESNEL_TABLE or
+// SKY_LOBE_FRESNEL_WEIGHTED defined (scenes with ocean.effective_fresnel = "table" or
+// ocean.sky_lobe_centre = "fresnel_weighted"; the others create none of it).
 #pragma once
 
 #include "thalassa/engine/gl/objects.hpp"
