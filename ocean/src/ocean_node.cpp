@@ -172,9 +172,10 @@ class OceanNode final : public gl::Node {
       glossy_sky_ = std::make_unique<atmosphere::GlossySkyMaps>();
     if (options_.features && !options_.features->empty())
       local_features_ = std::make_unique<LocalFeatureBuffers>(*options_.features);
-    // Eq. 24's table only where the scene asks for it and a term reads F-bar.
-    if ((options_.sky || options_.sea) && (fresnel_table() || sky_lobe_fresnel_weighted()))
-      effective_fresnel_ = std::make_unique<EffectiveFresnelTexture>();
+    // Eq. 24's table where the scene asks for it and a term reads it (not shrm's sky: its glossy
+    // maps are filtered about the mirror direction in frequency space).
+    effective_fresnel_ = EffectiveFresnelTexture::make_if_used(
+        options_.settings, options_.sky || options_.sea, options_.sky && !options_.sky_shrm);
   }
 
   std::string name() const override { return "ocean"; }
@@ -191,8 +192,8 @@ class OceanNode final : public gl::Node {
     if (glossy_sky_)
       for (const std::string& item : glossy_sky_->built()) list.push_back(item);
     if (options_.sea) list.push_back("ocean.refracted_light");
-    if (effective_fresnel_ && fresnel_table()) list.push_back("ocean.effective_fresnel.table");
-    if (sky_lobe_fresnel_weighted()) list.push_back("ocean.sky_lobe_centre.fresnel_weighted");
+    if (effective_fresnel_)
+      for (const std::string& item : effective_fresnel_->built()) list.push_back(item);
     if (options_.air) list.push_back("ocean.aerial_perspective");
     if (local_features_)
       for (const std::string& item : local_features_->built()) list.push_back(item);
@@ -207,9 +208,7 @@ class OceanNode final : public gl::Node {
     if (options_.sky && options_.sky_nine_samples) lighting_defines["SKY_NINE_SAMPLES"] = "1";
     if (options_.sky && options_.sky_shrm) lighting_defines["SKY_SHRM"] = "1";
     if (options_.sea) lighting_defines["SEA_TERM"] = "1";
-    if (effective_fresnel_ && fresnel_table())
-      EffectiveFresnelTexture::add_defines(lighting_defines);
-    if (sky_lobe_fresnel_weighted()) lighting_defines["SKY_LOBE_FRESNEL_WEIGHTED"] = "1";
+    if (effective_fresnel_) effective_fresnel_->add_defines(lighting_defines);
     if (options_.method == OceanMethod::reference) lighting_defines["METHOD_REFERENCE"] = "1";
     if (reference_sun()) lighting_defines["REFERENCE_SUN"] = "1";
     if (reference_sun_scatter()) lighting_defines["REFERENCE_SUN_SCATTER"] = "1";
@@ -479,14 +478,6 @@ class OceanNode final : public gl::Node {
     return options_.method == OceanMethod::reference && options_.sun_glint;
   }
   bool reference_sun_scatter() const { return reference_sun() && options_.reference_sun_scatter; }
-
-  // Eq. 24's table for F-bar (ocean.effective_fresnel), and the sky's lobe centred by it
-  // (ocean.sky_lobe_centre; the sky term alone reads it, and not with shrm's glossy maps).
-  bool fresnel_table() const { return options_.settings.effective_fresnel == "table"; }
-  bool sky_lobe_fresnel_weighted() const {
-    return options_.sky && !options_.sky_shrm &&
-           options_.settings.sky_lobe_centre == "fresnel_weighted";
-  }
 
   // The gathered sun's uniforms (shaders/ocean/reference_sun.glsl).
   void set_reference_sun_uniforms(GLuint program) const {

@@ -18,9 +18,9 @@ class SpaceOceanNode final : public gl::Node {
       : options_(options), waves_(ocean::make_wave_set(options.settings)) {
     if (options_.features && !options_.features->empty())
       local_features_ = std::make_unique<ocean::LocalFeatureBuffers>(*options_.features);
-    // Eq. 24's table only where the scene asks for it and a term reads F-bar (as the surface's).
-    if ((options_.sky || options_.sea) && (fresnel_table() || sky_lobe_fresnel_weighted()))
-      effective_fresnel_ = std::make_unique<ocean::EffectiveFresnelTexture>();
+    // Eq. 24's table where the scene asks for it and a term reads it (as the surface's).
+    effective_fresnel_ = ocean::EffectiveFresnelTexture::make_if_used(
+        options_.settings, options_.sky || options_.sea, options_.sky);
   }
 
   std::string name() const override { return "ocean"; }
@@ -29,8 +29,8 @@ class SpaceOceanNode final : public gl::Node {
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky) list.push_back("ocean.sky_reflection.sky_map_array");
     if (options_.sea) list.push_back("ocean.refracted_light");
-    if (effective_fresnel_ && fresnel_table()) list.push_back("ocean.effective_fresnel.table");
-    if (sky_lobe_fresnel_weighted()) list.push_back("ocean.sky_lobe_centre.fresnel_weighted");
+    if (effective_fresnel_)
+      for (const std::string& item : effective_fresnel_->built()) list.push_back(item);
     if (options_.air) list.push_back("ocean.aerial_perspective");
     if (local_features_)
       for (const std::string& item : local_features_->built()) list.push_back(item);
@@ -44,8 +44,7 @@ class SpaceOceanNode final : public gl::Node {
     if (options_.sky) defines["SKY_TERM"] = "1";
     if (options_.sea) defines["SEA_TERM"] = "1";
     if (options_.air) defines["AIR_TERM"] = "1";
-    if (effective_fresnel_ && fresnel_table()) ocean::EffectiveFresnelTexture::add_defines(defines);
-    if (sky_lobe_fresnel_weighted()) defines["SKY_LOBE_FRESNEL_WEIGHTED"] = "1";
+    if (effective_fresnel_) effective_fresnel_->add_defines(defines);
     if (options_.sky) {
       defines["SKY_MAP_ARRAY"] = "1";
       provider.sky_map_array(context.shaders, &context.timer);
@@ -91,13 +90,6 @@ class SpaceOceanNode final : public gl::Node {
   }
 
  private:
-  // Eq. 24's table for F-bar (ocean.effective_fresnel), and the sky's lobe centred by it
-  // (ocean.sky_lobe_centre), as the surface's ocean node reads them.
-  bool fresnel_table() const { return options_.settings.effective_fresnel == "table"; }
-  bool sky_lobe_fresnel_weighted() const {
-    return options_.sky && options_.settings.sky_lobe_centre == "fresnel_weighted";
-  }
-
   SpaceOceanNodeOptions options_;
   ocean::WaveSet waves_;
   std::unique_ptr<ocean::LocalFeatureBuffers> local_features_;  // only with wakes or calm areas

@@ -24,32 +24,31 @@ vec4 OceanEffectiveFresnelTableSample(float cos_theta_v, float along) {
 #endif
 
 // F-bar (dimensionless) for the unit view v_t (toward the eye, tangent frame: x along the wind),
-// the slope variances (along, across the wind) and Schlick's R = fresnel_r.
-float OceanSceneEffectiveFresnel(vec3 v_t, vec2 slope_variance, float fresnel_r) {
+// the slope variances (along, across the wind) and Schlick's R = fresnel_r; and in lobe_centre the
+// slope (tangent frame) on which the reflected sky's lobe is centred: 0 (eq. 27: the mirror
+// direction of the mean normal), or with SKY_LOBE_FRESNEL_WEIGHTED the visible facets'
+// Fresnel-weighted mean slope (OceanFresnelWeightedMeanSlope) along the view's azimuth. Both from
+// one eq. 25 and one fetch of the table.
+float OceanSceneEffectiveFresnel(vec3 v_t, vec2 slope_variance, float fresnel_r,
+                                 out vec2 lobe_centre) {
   const float along = OceanSlopeVarianceToward(v_t, slope_variance);
+  lobe_centre = vec2(0.0);
+#if defined(EFFECTIVE_FRESNEL_TABLE) || defined(SKY_LOBE_FRESNEL_WEIGHTED)
+  const vec4 table = OceanEffectiveFresnelTableSample(v_t.z, along);
+#endif
+#ifdef SKY_LOBE_FRESNEL_WEIGHTED
+  const float horizontal = length(vec2(v_t.x, v_t.y));
+  if (horizontal > 0.0) {
+    lobe_centre = OceanFresnelWeightedMeanSlope(table, horizontal, fresnel_r) *
+                  vec2(v_t.x, v_t.y) / horizontal;
+  }
+#endif
 #ifdef EFFECTIVE_FRESNEL_TABLE
   const vec2 s2 = OceanClampedSlopeVariance(slope_variance);
   const float across = max(s2.x + s2.y - along, 0.0);  // eq. 25's complement
-  return OceanEffectiveFresnelFromTable(OceanEffectiveFresnelTableSample(v_t.z, along).xy, along,
-                                        across, fresnel_r);
+  return OceanEffectiveFresnelFromTable(table.xy, along, across, fresnel_r);
 #else
   return OceanEffectiveFresnel(v_t.z, along, fresnel_r);
-#endif
-}
-
-// The slope (tangent frame) on which the reflected sky's lobe is centred: 0 (eq. 27: the mirror
-// direction of the mean normal), or with SKY_LOBE_FRESNEL_WEIGHTED the visible facets'
-// Fresnel-weighted mean slope (OceanFresnelWeightedMeanSlope) along the view's azimuth.
-vec2 OceanSceneSkyLobeCentre(vec3 v_t, vec2 slope_variance, float fresnel_r) {
-#ifdef SKY_LOBE_FRESNEL_WEIGHTED
-  const float horizontal = length(vec2(v_t.x, v_t.y));
-  if (horizontal <= 0.0) return vec2(0.0);
-  const float along = OceanSlopeVarianceToward(v_t, slope_variance);
-  const float slope = OceanFresnelWeightedMeanSlope(
-      OceanEffectiveFresnelTableSample(v_t.z, along), horizontal, fresnel_r);
-  return slope * vec2(v_t.x, v_t.y) / horizontal;
-#else
-  return vec2(0.0);
 #endif
 }
 

@@ -118,8 +118,11 @@ void main() {
   light.irradiance = horizontal_irradiance;
 #endif
 
-  // Sky (eq. 21, 26 or 24, 27) and refracted light (eq. 28).
-  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r);
+  // Sky (eq. 21, 26 or 24, 27) and refracted light (eq. 28); the sky lobe's centre in slope
+  // space: 0 (eq. 27), or with ocean.sky_lobe_centre = "fresnel_weighted" the visible facets'
+  // Fresnel-weighted mean slope.
+  vec2 centre;
+  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r, centre);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
 #ifdef SKY_SHRM
@@ -136,9 +139,6 @@ void main() {
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
-  // The lobe's centre in slope space: 0 (eq. 27), or with ocean.sky_lobe_centre =
-  // "fresnel_weighted" the visible facets' Fresnel-weighted mean slope.
-  const vec2 centre = OceanSceneSkyLobeCentre(v_t, slope_variance, fresnel_r);
 #ifdef SKY_LOBE_FRESNEL_WEIGHTED
   u0 += centre.x * du_x + centre.y * du_y;
 #endif

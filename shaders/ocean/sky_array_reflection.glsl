@@ -25,7 +25,7 @@ vec3 OceanTangentToward(vec3 n, vec3 preferred, vec3 fallback) {
 // the shading tangent frame (Algorithm 5.1); sigma the slope standard deviations along t_x, t_y;
 // sun toward the sun. All unit vectors in one frame (the nadir frame). With
 // SKY_LOBE_FRESNEL_WEIGHTED the lobe is centred on the slope `centre` (along t_x, t_y;
-// ocean/effective_fresnel.glsl, OceanSceneSkyLobeCentre) instead of the mean normal's mirror
+// ocean/effective_fresnel.glsl, OceanSceneEffectiveFresnel) instead of the mean normal's mirror
 // direction.
 vec3 OceanSkyArrayReflection(vec3 up, vec3 v, vec3 t_x, vec3 t_y, vec3 n, vec2 centre, vec2 sigma,
                              vec3 sun) {

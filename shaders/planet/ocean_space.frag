@@ -55,13 +55,12 @@ void main() {
   // The sun, the irradiance and the atmosphere at the point itself (ocean/sea_point_light.glsl).
   const OceanPointLight light = OceanLightAtPoint(x, n, sun);
 
-  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r);
+  vec2 lobe_centre;  // the sky's, in slope space (ocean/effective_fresnel.glsl)
+  const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r, lobe_centre);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
   const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
-  sea += fresnel * OceanSkyArrayReflection(
-                       n, v, t_x, t_y, n, OceanSceneSkyLobeCentre(v_t, slope_variance, fresnel_r),
-                       sigma, sun);
+  sea += fresnel * OceanSkyArrayReflection(n, v, t_x, t_y, n, lobe_centre, sigma, sun);
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);

@@ -36,6 +36,15 @@ Render render(GlContext& context, const Scene& scene, ocean::OceanMethod method,
   return {renderer.image(), renderer.stats()};
 }
 
+// The total of image row y (from the bottom) in the green channel (the sea's rows as fig. 10 sums
+// them).
+double row_total(const Image& image, int y) {
+  double sum = 0.0;
+  for (int x = 0; x < image.width; ++x)
+    sum += image.rgba[(std::size_t(y) * image.width + x) * 4 + 1];
+  return sum;
+}
+
 // The sea alone (pitched well below the horizon), lit by a sun ahead, at a given height (m).
 Scene validation_scene(double height) {
   Scene scene = test::scene_from(R"({
@@ -86,12 +95,6 @@ TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
   const Image full = render(*context, scene, ocean::OceanMethod::full, sky).image;
   scene.ocean.sky_lobe_centre = "fresnel_weighted";
   const Image lobe = render(*context, scene, ocean::OceanMethod::full, sky).image;
-  auto row_total = [](const Image& image, int y) {
-    double sum = 0.0;
-    for (int x = 0; x < image.width; ++x)
-      sum += image.rgba[(std::size_t(y) * image.width + x) * 4 + 1];
-    return sum;
-  };
   double full_error = 0.0, lobe_error = 0.0, total = 0.0;
   double full_near = 0.0, lobe_near = 0.0, reference_near = 0.0;
   for (int y = 0; y < scene.image.height; ++y) {
@@ -265,9 +268,7 @@ BandDeviations full_and_basic_against_reference(GlContext& context, Scene scene,
       basic_bands(band_count, 0.0);
   std::vector<bool> resolved(band_count, true);
   auto add_bands = [&](const Image& image, std::vector<double>& bands) {
-    for (int y = 0; y < 4 * band_count; ++y)
-      for (int x = 0; x < image.width; ++x)
-        bands[y / 4] += image.rgba[(std::size_t(y) * image.width + x) * 4 + 1];
+    for (int y = 0; y < 4 * band_count; ++y) bands[y / 4] += row_total(image, y);
   };
   for (const std::uint32_t seed : seeds) {
     scene.ocean.seed = seed;

@@ -426,8 +426,12 @@ TEST_F(GpuNumericsTest, EffectiveFresnelTable) {
   for (float cos_theta : {0.0f, 1e-6f, 1e-3f, 0.5f, 1.0f})
     for (float along : {0.0f, 1e-12f, 1e-4f, 0.25f, 1.0f, 1e6f})
       inputs.emplace_back(cos_theta, along, along, 0.0f);
-  const ocean::EffectiveFresnelTexture texture;
-  const auto gpu = evaluate(12, inputs, [&](GLuint) { texture.bind(); });
+  OceanSettings settings;
+  settings.effective_fresnel = "table";
+  settings.sky_lobe_centre = "fresnel_weighted";
+  const auto texture = ocean::EffectiveFresnelTexture::make_if_used(settings, true, true);
+  ASSERT_TRUE(texture);
+  const auto gpu = evaluate(12, inputs, [&](GLuint) { texture->bind(); });
   Region region("effective Fresnel (eq. 24's table)", "samples, between and beyond",
                 largest_step / 256.0);
   // The lobe's centre (ocean.sky_lobe_centre = "fresnel_weighted"), a slope along the view

@@ -96,7 +96,8 @@ void main() {
   // F-bar from eq. 24's table (ocean.effective_fresnel = "table"), v = (sqrt(1 - p.x^2), 0, p.x)
   // in the tangent frame (toward the wind: along = p.y, across = p.z).
   const vec3 v = vec3(sqrt(max(1.0 - p.x * p.x, 0.0)), 0.0, p.x);
-  result = vec4(OceanSceneEffectiveFresnel(v, vec2(p.y, p.z), 0.02),
-                OceanSceneSkyLobeCentre(v, vec2(p.y, p.z), 0.02), 0.0);
+  vec2 lobe_centre;
+  const float fresnel = OceanSceneEffectiveFresnel(v, vec2(p.y, p.z), 0.02, lobe_centre);
+  result = vec4(fresnel, lobe_centre, 0.0);
 #endif
 }
