@@ -364,6 +364,21 @@ std::vector<double> green_row_totals(const Image& image) {
   return totals;
 }
 
+// A 3 m/s sea of waves from 7.5 to 30 m seen from 8 km, 10 degrees down with a 45-degree field,
+// the sun 10 degrees high ahead, at 64 x 36 times `scale` (1.25-degree pixels at scale 1; the
+// horizon in row 12 of 36), the camera's heading in degrees.
+Scene calm_sea_from_8km(int scale, double heading = 180.0) {
+  Scene scene = test::scene_from(R"({
+    "camera": {"pitch": -10, "fov_y": 45, "height": 8000},
+    "sun": {"zenith": 80, "azimuth": 180},
+    "ocean": {"wind_speed": 3, "wind_direction": 180, "lambda_min": 7.5, "lambda_max": 30}
+  })");
+  scene.camera.heading = heading;
+  scene.image.width = 64 * scale;
+  scene.image.height = 36 * scale;
+  return scene;
+}
+
 // Every method's sun is eq. 15 averaged over each pixel (shaders/ocean/pixel_mirror_slopes.glsl):
 // on a 3 m/s sea seen from 8 km with the sun 10 degrees high ahead, whose glitter path is
 // narrower than a pixel (zeta_h moves across the wind by about 5 of the lobe's standard deviations
@@ -392,22 +407,12 @@ std::vector<double> green_row_totals(const Image& image) {
 // across it decide; not asserted.)
 TEST(OceanMethods, SunIsEq15AveragedOverEachPixel) {
   auto context = test::make_test_context();
-  const auto scene_at = [](int scale, double heading) {
-    Scene scene = test::scene_from(R"({
-      "camera": {"pitch": -10, "fov_y": 45, "height": 8000},
-      "sun": {"zenith": 80, "azimuth": 180},
-      "ocean": {"wind_speed": 3, "wind_direction": 180, "lambda_min": 7.5, "lambda_max": 30}
-    })");
-    scene.camera.heading = heading;
-    scene.image.width = 64 * scale;
-    scene.image.height = 36 * scale;
-    return scene;
-  };
   const LightTerms sun{true, false, false, false};
   const ocean::OceanMethod method = ocean::OceanMethod::full;
-  const Render low = render(*context, scene_at(1, 180.0), method, sun);
-  const Render fine = render(*context, scene_at(8, 180.0), method, sun);
-  const Render turned = render(*context, scene_at(1, 180.0 + 0.5 * 45.0 / 36.0), method, sun);
+  const Render low = render(*context, calm_sea_from_8km(1), method, sun);
+  const Render fine = render(*context, calm_sea_from_8km(8), method, sun);
+  const Render turned =
+      render(*context, calm_sea_from_8km(1, 180.0 + 0.5 * 45.0 / 36.0), method, sun);
   EXPECT_EQ(low.stats.resolved_waves, 0);
   EXPECT_EQ(fine.stats.resolved_waves, 0);
   const std::vector<double> rows = green_row_totals(low.image);
@@ -460,22 +465,12 @@ TEST(OceanMethods, SunIsEq15AveragedOverEachPixel) {
 // pixel's, whose reflected directions fan out over more than the lobe's width.
 TEST(OceanMethods, NormalsTakeTheSeasFrameWhereTheRayMeetsIt) {
   auto context = test::make_test_context();
-  const auto scene_at = [](int scale) {
-    Scene scene = test::scene_from(R"({
-      "camera": {"pitch": -10, "fov_y": 45, "height": 8000, "heading": 180},
-      "sun": {"zenith": 80, "azimuth": 180},
-      "ocean": {"wind_speed": 3, "wind_direction": 180, "lambda_min": 7.5, "lambda_max": 30}
-    })");
-    scene.image.width = 64 * scale;
-    scene.image.height = 36 * scale;
-    return scene;
-  };
   const LightTerms sky{false, true, false, false};
-  const Render low = render(*context, scene_at(1), ocean::OceanMethod::full, sky);
-  const Render fine = render(*context, scene_at(8), ocean::OceanMethod::full, sky);
+  const Render low = render(*context, calm_sea_from_8km(1), ocean::OceanMethod::full, sky);
+  const Render fine = render(*context, calm_sea_from_8km(8), ocean::OceanMethod::full, sky);
   const std::vector<double> rows = green_row_totals(low.image);
   const std::vector<double> fine_rows = green_row_totals(fine.image);
-  // The horizon is in row 12 (SunIsEq15AveragedOverEachPixel), row 14 2.5 degrees below it.
+  // Row 14 is 2.5 degrees below the horizon.
   constexpr int kFirstComparedRow = 14;
   double worst = 0.0;
   for (int y = kFirstComparedRow; y < low.image.height; ++y) {
