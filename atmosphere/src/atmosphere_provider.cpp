@@ -23,10 +23,7 @@ gl::Texture upload_2d(const glsl::Texture2D& table) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage2D(texture.get(), 0, 0, 0, table.width(), table.height(), GL_RGB, GL_FLOAT,
                       table.data().data());
-  glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::set_sampling(texture.get(), {});
   return texture;
 }
 
@@ -36,11 +33,7 @@ gl::Texture upload_3d(const glsl::Texture3D& table) {
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage3D(texture.get(), 0, 0, 0, 0, table.width(), table.height(), table.depth(),
                       GL_RGB, GL_FLOAT, table.data().data());
-  glTextureParameteri(texture.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture.get(), GL_TEXTURE_WRAP_R, GL_CLAMP_TO_EDGE);
+  gl::set_sampling(texture.get(), {.wrap_r = GL_CLAMP_TO_EDGE});
   return texture;
 }
 

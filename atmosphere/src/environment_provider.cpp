@@ -60,10 +60,7 @@ class EnvironmentProvider final : public SkyProvider {
     panorama_ = gl::make_texture(GL_TEXTURE_2D);
     glTextureStorage2D(panorama_.get(), 1, GL_RGBA32F, panorama.width, panorama.height);
     upload_flipped(panorama_.get(), panorama, -1);
-    glTextureParameteri(panorama_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(panorama_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(panorama_.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTextureParameteri(panorama_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(panorama_.get(), {.wrap_s = GL_REPEAT});  // s: the azimuth
   }
 
   std::string kind() const override { return "environment_map"; }

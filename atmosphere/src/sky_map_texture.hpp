@@ -8,6 +8,7 @@
 
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/gl/gl.hpp"
+#include "thalassa/engine/gl/objects.hpp"
 #include "thalassa/engine/gl/shader_library.hpp"
 
 namespace thalassa::atmosphere {
@@ -20,10 +21,7 @@ inline int sky_map_mip_levels(int size) {
 // Trilinear, clamped: the anisotropy of eq. 27's fetch is done in the shader
 // (SkyMapRadianceGrad in shaders/atmosphere/sky_provider.glsl), not by the texture unit.
 inline void set_sky_map_sampling(GLuint texture) {
-  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::set_sampling(texture, {.min_filter = GL_LINEAR_MIPMAP_LINEAR});
 }
 
 // A double as a GLSL float literal with full float precision ("1.0", "2.5e-06").

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "thalassa/engine/gl/gpu_timer.hpp"
+#include "thalassa/engine/gl/objects.hpp"
 
 namespace thalassa::atmosphere {
 
@@ -44,10 +45,8 @@ const GlossySky& GlossySkyMaps::update(const SkyProvider& provider, double heigh
                        static_cast<GLsizei>(sky_.levels.size()));
     // The maps are already filtered by the BRDF (their finest lobe spans ~2 texels): bilinear
     // within a layer; the shader interpolates between layers itself.
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_S, GL_REPEAT);         // azimuth
-    glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);  // zenith angle
+    // s: the azimuth; t: the zenith angle.
+    gl::set_sampling(texture_.get(), {.wrap_s = GL_REPEAT});
   }
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage3D(texture_.get(), 0, 0, 0, 0, sky_.width, sky_.height,

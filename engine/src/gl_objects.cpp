@@ -65,4 +65,13 @@ Query make_query(GLenum target) {
   return Query(name);
 }
 
+void set_sampling(GLuint texture, const Sampling& sampling) {
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(sampling.min_filter));
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(sampling.mag_filter));
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, static_cast<GLint>(sampling.wrap_s));
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, static_cast<GLint>(sampling.wrap_t));
+  if (sampling.wrap_r != 0)
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_R, static_cast<GLint>(sampling.wrap_r));
+}
+
 }  // namespace thalassa::gl

@@ -20,10 +20,7 @@ EffectiveFresnelTexture::EffectiveFresnelTexture(bool table, bool sky_lobe)
                       GL_FLOAT, values.values.data());
   // Bilinear between the samples (EffectiveFresnelTable::lookup is its CPU twin); the shader
   // clamps its coordinates to the samples' centres, so the edges never blend with a border.
-  glTextureParameteri(texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTextureParameteri(texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  gl::set_sampling(texture_.get(), {});
 }
 
 void EffectiveFresnelTexture::add_defines(gl::Defines& defines) const {

@@ -53,10 +53,7 @@ LocalFeatureBuffers::LocalFeatureBuffers(const LocalFeatures& features) {
     glTextureSubImage2D(calm_texture_.get(), 0, 0, 0, chart.width, chart.height, GL_RED, GL_FLOAT,
                         chart.scale.data());
     // Bilinear between samples; beyond the chart its border samples (s = 1) go on.
-    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTextureParameteri(calm_texture_.get(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl::set_sampling(calm_texture_.get(), {});
     calm_areas_ = std::max(chart.areas, 1);
     calm_width_ = chart.width;
     calm_height_ = chart.height;

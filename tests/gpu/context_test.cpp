@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "test_support.hpp"
+#include "thalassa/engine/gl/objects.hpp"
 
 namespace thalassa {
 namespace {
@@ -60,6 +61,30 @@ TEST(Context, DebugFromTheEnvironment) {
   if (test::backend_under_test() == Backend::Egl) {
     EXPECT_TRUE(flags & GL_CONTEXT_FLAG_DEBUG_BIT);
   }
+}
+
+// gl::set_sampling sets what it is given on the texture and leaves an axis it is not given alone.
+TEST(Context, TextureSamplingIsWhatWasAsked) {
+  auto context = test::make_test_context();
+  const auto parameter = [](GLuint texture, GLenum name) {
+    GLint value = 0;
+    glGetTextureParameteriv(texture, name, &value);
+    return static_cast<GLenum>(value);
+  };
+  const gl::Texture table = gl::make_texture(GL_TEXTURE_3D);
+  gl::set_sampling(table.get(), {.wrap_r = GL_CLAMP_TO_EDGE});
+  EXPECT_EQ(parameter(table.get(), GL_TEXTURE_MIN_FILTER), GLenum(GL_LINEAR));
+  EXPECT_EQ(parameter(table.get(), GL_TEXTURE_MAG_FILTER), GLenum(GL_LINEAR));
+  EXPECT_EQ(parameter(table.get(), GL_TEXTURE_WRAP_S), GLenum(GL_CLAMP_TO_EDGE));
+  EXPECT_EQ(parameter(table.get(), GL_TEXTURE_WRAP_T), GLenum(GL_CLAMP_TO_EDGE));
+  EXPECT_EQ(parameter(table.get(), GL_TEXTURE_WRAP_R), GLenum(GL_CLAMP_TO_EDGE));
+  const gl::Texture map = gl::make_texture(GL_TEXTURE_2D);
+  gl::set_sampling(map.get(), {.min_filter = GL_LINEAR_MIPMAP_LINEAR, .wrap_s = GL_REPEAT});
+  EXPECT_EQ(parameter(map.get(), GL_TEXTURE_MIN_FILTER), GLenum(GL_LINEAR_MIPMAP_LINEAR));
+  EXPECT_EQ(parameter(map.get(), GL_TEXTURE_WRAP_S), GLenum(GL_REPEAT));
+  EXPECT_EQ(parameter(map.get(), GL_TEXTURE_WRAP_T), GLenum(GL_CLAMP_TO_EDGE));
+  EXPECT_EQ(parameter(map.get(), GL_TEXTURE_WRAP_R), GLenum(GL_REPEAT));  // GL's default, left
+  EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
 TEST(Context, NamesAndErrors) {
