@@ -54,9 +54,12 @@ using ShaderName = Handle<delete_shader>;
 
 Buffer make_buffer();
 Texture make_texture(GLenum target);
+Framebuffer make_framebuffer();
+VertexArray make_vertex_array();
+Query make_query(GLenum target);
 
-// How a texture is sampled: its minification and magnification filters and its wrap mode along
-// s, t and r (an axis the texture does not have is left alone: wrap_r 0). The default, bilinear
+// How a texture is sampled: its minification and magnification filters and its wrap modes along
+// s, t and r (wrap_r 0 leaves r as it is, for a texture without that axis). The default, bilinear
 // and clamped to the edge, is a table's: its samples interpolated, never blended with a border.
 struct Sampling {
   GLenum min_filter = GL_LINEAR;
@@ -66,8 +69,5 @@ struct Sampling {
   GLenum wrap_r = 0;
 };
 void set_sampling(GLuint texture, const Sampling& sampling);
-Framebuffer make_framebuffer();
-VertexArray make_vertex_array();
-Query make_query(GLenum target);
 
 }  // namespace thalassa::gl
