@@ -28,6 +28,8 @@ vec3 FrameViewRay(vec2 frag_coord) {
 }
 
 float FrameCameraHeight() { return frame_camera_forward.w; }
+// The camera's position (m, this frame): above the nadir, the frame's origin.
+vec3 FrameCameraPosition() { return vec3(0.0, 0.0, FrameCameraHeight()); }
 
 // Clip-space position of a camera-relative point d (m, nadir frame), reversed-Z with an infinite
 // far plane (depth = near / distance along the view axis), the image shifted so that each pixel

@@ -60,7 +60,7 @@ void main() {
 #endif
   const vec3 p = x + FrameSeaTangentFrame(x) * displacement;
   // Camera-relative (the camera is at height FrameCameraHeight() above the nadir).
-  const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
+  const vec3 d = p - FrameCameraPosition();
   gl_Position = FrameClipPosition(d, OCEAN_NEAR_PLANE);
   rest_position = x;
 #ifdef METHOD_REFERENCE

@@ -74,7 +74,7 @@ void main() {
   // Where the ray meets the sea at rest; a ray that misses it gets the flat sea's point (clamped
   // at grazing) so that the derivatives stay finite before its pixel is discarded.
   const float distance = FrameSeaDistance(ray);
-  const vec3 x = vec3(0.0, 0.0, FrameCameraHeight()) +
+  const vec3 x = FrameCameraPosition() +
                  (distance >= 0.0 ? distance : FrameCameraHeight() / max(-ray.z, 1e-6)) * ray;
 #else
   const vec3 x = rest_position;
@@ -157,7 +157,7 @@ void main() {
 #else
   const float frame_distance = FrameSeaDistance(ray);
   const vec3 x_frame =
-      frame_distance >= 0.0 ? vec3(0.0, 0.0, FrameCameraHeight()) + frame_distance * ray : x;
+      frame_distance >= 0.0 ? FrameCameraPosition() + frame_distance * ray : x;
 #endif
   const vec3 area_local = cross(d_dx, d_dy);  // displaced area per unit rest area
   const vec3 n_local = normalize(area_local);

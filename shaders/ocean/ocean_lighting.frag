@@ -106,7 +106,7 @@ void main() {
   // distance), moved radially onto the atmosphere's sphere for its lookups (the planet's quadric
   // and that sphere part by at most ~0.1 km within a surface view's horizon).
   const float rest_distance = FrameSeaDistance(ray);
-  const vec3 point = vec3(0.0, 0.0, FrameCameraHeight()) +
+  const vec3 point = FrameCameraPosition() +
                      (rest_distance >= 0.0 ? rest_distance : horizon_distance) * ray;
   // The sun, the irradiance and the atmosphere at the point itself: across a view from 20 km the
   // local sun zenith changes by up to 9 degrees, as it does from one pixel to the next in the

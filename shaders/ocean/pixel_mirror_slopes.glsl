@@ -19,7 +19,7 @@ vec2 OceanEdgeMirrorSlopes(vec2 frag_coord, vec3 t_x, vec3 t_y, vec3 n, vec3 up,
   const vec3 ray = FrameViewRay(frag_coord);
   const float distance = FrameSeaDistance(ray);
   const vec3 rest_up =
-      distance >= 0.0 ? FrameSeaNormal(vec3(0.0, 0.0, FrameCameraHeight()) + distance * ray) : up;
+      distance >= 0.0 ? FrameSeaNormal(FrameCameraPosition() + distance * ray) : up;
   const vec3 u = OceanToTangentFrame(rest_up, t_x, t_y, n);
   return OceanHalfVectorSlopes(OceanToTangentFrame(-ray, t_x, t_y, n), l) +
          vec2(u.x, u.y) / max(u.z, OCEAN_MIN_FACET_COS);

@@ -191,7 +191,7 @@ void Deposit(int slot, int pixel, vec4 value) {
 // The image's pixel (row-major from the bottom row) in which the point p (m, nadir frame) is
 // seen, or -1 outside the image or behind the eye.
 int PixelOf(vec3 p) {
-  const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
+  const vec3 d = p - FrameCameraPosition();
   const float along = dot(d, frame_camera_forward.xyz);
   if (!(along > 0.0)) return -1;
   const vec2 ndc = vec2(dot(d, frame_camera_right.xyz) / frame_camera_right.w,
@@ -241,7 +241,7 @@ float NeighbourAlong(ivec2 xy, ivec2 offset) {
 // farther than the farthest surface the grid shows in that pixel, give or take `unresolved_height`
 // (m: the heights of the waves the grid cannot draw) along the view.
 bool GridShows(vec3 p, int pixel, float unresolved_height) {
-  const vec3 d = p - vec3(0.0, 0.0, FrameCameraHeight());
+  const vec3 d = p - FrameCameraPosition();
   const float along = dot(d, frame_camera_forward.xyz);
   const ivec2 xy = ivec2(pixel % int(frame_viewport.x), pixel / int(frame_viewport.x));
   const float centre = GridAlong(xy);
@@ -267,7 +267,7 @@ vec3 RestCorner(vec2 w, out bool hit) {
                              ndc.y * frame_camera_up.w * frame_camera_up.xyz);
   const float distance = FrameSeaDistance(ray);
   hit = distance >= 0.0;
-  const vec3 p = vec3(0.0, 0.0, FrameCameraHeight()) + (hit ? distance : horizon_distance) * ray;
+  const vec3 p = FrameCameraPosition() + (hit ? distance : horizon_distance) * ray;
   return vec3(p.x, p.y, ReferenceRestHeight(frame_sea_curvature, vec2(p.x, p.y)));
 }
 
@@ -417,7 +417,7 @@ const float REFERENCE_REFINE_SIGMAS = 4.0;
 void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area, float size,
                  float unresolved, float unresolved_height) {
   const vec3 centre = 0.25 * (c00.position + c10.position + c01.position + c11.position);
-  const vec3 to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - centre;
+  const vec3 to_eye = FrameCameraPosition() - centre;
   const float omega =
       ReferenceCellSolidAngle(0.25 * (c00.area + c10.area + c01.area + c11.area), rest_area,
                               to_eye);
@@ -454,7 +454,7 @@ void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area
           const Corner s00 = below[i], s10 = below[i + 1], s01 = above[i], s11 = above[i + 1];
           const vec3 sub_centre =
               0.25 * (s00.position + s10.position + s01.position + s11.position);
-          const vec3 sub_to_eye = vec3(0.0, 0.0, FrameCameraHeight()) - sub_centre;
+          const vec3 sub_to_eye = FrameCameraPosition() - sub_centre;
           const float sub_omega = ReferenceCellSolidAngle(
               0.25 * (s00.area + s10.area + s01.area + s11.area), sub_area, sub_to_eye);
           if (!(sub_omega > 0.0)) continue;
@@ -499,7 +499,7 @@ void main() {
   // pixel), doubled for the projection's change with depth.
   const vec2 outside = max(max(-pixel - 1.0, pixel - frame_viewport.xy), vec2(0.0));
   if (outside.x > 0.0 || outside.y > 0.0) {
-    const vec3 eye = vec3(0.0, 0.0, FrameCameraHeight());
+    const vec3 eye = FrameCameraPosition();
     const float along = max(min(min(dot(q00 - eye, frame_camera_forward.xyz),
                                     dot(q10 - eye, frame_camera_forward.xyz)),
                                 min(dot(q01 - eye, frame_camera_forward.xyz),

@@ -37,7 +37,7 @@ void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
   const float distance = FrameSeaDistance(ray);
   if (distance < 0.0) discard;  // space or the limb: the sky pass's pixel
-  const vec3 x = vec3(0.0, 0.0, FrameCameraHeight()) + distance * ray;
+  const vec3 x = FrameCameraPosition() + distance * ray;
   const vec3 n = FrameSeaNormal(x);
 #if defined(CALM_AREAS) || defined(KELVIN_WAKES)
   // Issue 9: this point's slope variance, hiding the uniform's (its scope starts after the
