@@ -5,9 +5,9 @@
 namespace thalassa::ocean {
 
 std::unique_ptr<EffectiveFresnelTexture> EffectiveFresnelTexture::make_if_used(
-    const OceanSettings& settings, bool reads_fresnel, bool eq27_sky) {
+    const OceanSettings& settings, bool reads_fresnel, bool reflects_sky) {
   const bool table = reads_fresnel && settings.effective_fresnel == "table";
-  const bool sky_lobe = eq27_sky && settings.sky_lobe_centre == "fresnel_weighted";
+  const bool sky_lobe = reflects_sky && settings.sky_lobe_centre == "fresnel_weighted";
   if (!table && !sky_lobe) return nullptr;
   return std::unique_ptr<EffectiveFresnelTexture>(new EffectiveFresnelTexture(table, sky_lobe));
 }

@@ -172,10 +172,9 @@ class OceanNode final : public gl::Node {
       glossy_sky_ = std::make_unique<atmosphere::GlossySkyMaps>();
     if (options_.features && !options_.features->empty())
       local_features_ = std::make_unique<LocalFeatureBuffers>(*options_.features);
-    // Eq. 24's table where the scene asks for it and a term reads it (not shrm's sky: its glossy
-    // maps are filtered about the mirror direction in frequency space).
+    // Eq. 24's table where the scene asks for it and a term reads it.
     effective_fresnel_ = EffectiveFresnelTexture::make_if_used(
-        options_.settings, options_.sky || options_.sea, options_.sky && !options_.sky_shrm);
+        options_.settings, options_.sky || options_.sea, options_.sky);
   }
 
   std::string name() const override { return "ocean"; }

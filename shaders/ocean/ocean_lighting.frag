@@ -132,9 +132,18 @@ void main() {
   // the kernel is eq. 22's at normal view, radially symmetric about the mirror direction (P = 0),
   // so the narrowing of the lobe across the plane of incidence at grazing views (by cos theta_v)
   // is not represented. Fresnel stays outside, as eq. 26's effective Fresnel: a Fresnel-weighted
-  // Ross BRDF needs a high view order P in SH (sh_brdf_test.cpp).
+  // Ross BRDF needs a high view order P in SH (sh_brdf_test.cpp). The lobe's centre moves as
+  // eq. 27's does: to the mirror direction of the facet whose slope is the centre (tangent frame;
+  // the normal of slope zeta is n - zeta_x t_x - zeta_y t_y before normalising, the derivative
+  // that OceanSkyMapGradients takes), exactly rather than to first order in the map.
   const vec2 shrm_variance = OceanClampedSlopeVariance(slope_variance);
-  sea += fresnel * SkyShrmRadiance(reflect(ray, n), sqrt(shrm_variance.x * shrm_variance.y));
+#ifdef SKY_LOBE_FRESNEL_WEIGHTED
+  const vec3 lobe_normal = normalize(n - centre.x * t_x - centre.y * t_y);
+#else
+  const vec3 lobe_normal = n;
+#endif
+  sea += fresnel *
+         SkyShrmRadiance(reflect(ray, lobe_normal), sqrt(shrm_variance.x * shrm_variance.y));
 #else
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);

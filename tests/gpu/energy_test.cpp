@@ -108,6 +108,8 @@ const FurnaceView kFurnaceViews[] = {
      R"({"camera": {"pitch": -10, "height": 4}, "ocean": {"sky_filter": "nine_samples", "wind_speed": 20, "lambda_max": 300}})"},
     {"surface_shrm",
      R"({"camera": {"pitch": -10, "height": 4}, "ocean": {"sky_filter": "shrm", "wind_speed": 20, "lambda_max": 300}})"},
+    {"surface_shrm_sky_lobe",
+     R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"sky_filter": "shrm", "sky_lobe_centre": "fresnel_weighted", "wind_speed": 40, "lambda_max": 1000}})"},
     {"surface_horizon_table",
      R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"effective_fresnel": "table", "wind_speed": 40, "lambda_max": 1000}})"},
     {"surface_horizon_sky_lobe",

@@ -25,10 +25,11 @@ class EffectiveFresnelTexture {
   // The table where `settings` use it in a lighting pass: eq. 24's F-bar
   // (ocean.effective_fresnel = "table") where a term reads F-bar (reads_fresnel: the sky or the
   // refracted light), the sky's lobe centre (ocean.sky_lobe_centre = "fresnel_weighted") where the
-  // sky is filtered by eq. 27 (eq27_sky); null where neither. Uploads the table (computing it on
-  // the process's first use).
+  // reflected sky is drawn (reflects_sky; every ocean.sky_filter moves its lobe to it); null where
+  // neither. Uploads the table (computing it on the process's first use).
   static std::unique_ptr<EffectiveFresnelTexture> make_if_used(const OceanSettings& settings,
-                                                               bool reads_fresnel, bool eq27_sky);
+                                                               bool reads_fresnel,
+                                                               bool reflects_sky);
 
   // EFFECTIVE_FRESNEL_TABLE and SKY_LOBE_FRESNEL_WEIGHTED, as used.
   void add_defines(gl::Defines& defines) const;
