@@ -213,10 +213,11 @@ class OceanNode final : public gl::Node {
     if (reference_sun_scatter()) lighting_defines["REFERENCE_SUN_SCATTER"] = "1";
     if (options_.air) lighting_defines["AIR_TERM"] = "1";
     if (underwater) lighting_defines["UNDERWATER"] = "1";
-    // Above kResolvedFadeStart the sky's reflection hands over to the view from space's array
-    // (not with shrm, whose glossy maps are a method of their own, nor under water).
+    // Above kResolvedFadeStart the sky's reflection hands over to the view from space's array,
+    // whatever the filter (shrm's glossy maps too, since stop 39; the view from space has no
+    // shrm), so that the switch at 20 km shows no seam; not under water.
     const double array_weight = 1.0 - resolved_wave_scale(inputs.camera_height);
-    const bool sky_array = options_.sky && !options_.sky_shrm && !underwater && array_weight > 0.0;
+    const bool sky_array = options_.sky && !underwater && array_weight > 0.0;
     if (sky_array) {
       lighting_defines["SKY_MAP_ARRAY"] = "1";
       provider_->sky_map_array(context.shaders, &context.timer);

@@ -114,8 +114,14 @@ void main() {
   const vec3 up = FrameSeaNormal(point);
   OceanPointLight light = OceanLightAtPoint(point, up, sun);
 #ifdef SKY_SHRM
-  // The SH sky's own irradiance, so that the reflected and the refracted sky are one sky.
+  // The SH sky's own irradiance, so that the reflected and the refracted sky are one sky; through
+  // the hand-over to the view from space, toward the point's own as the sky's reflection goes to
+  // the array's (below).
+#ifdef SKY_MAP_ARRAY
+  light.irradiance = mix(horizontal_irradiance, light.irradiance, sky_array_weight);
+#else
   light.irradiance = horizontal_irradiance;
+#endif
 #endif
 
   // Sky (eq. 21, 26 or 24, 27) and refracted light (eq. 28); the sky lobe's centre in slope
@@ -142,8 +148,16 @@ void main() {
 #else
   const vec3 lobe_normal = n;
 #endif
-  sea += fresnel *
-         SkyShrmRadiance(reflect(ray, lobe_normal), sqrt(shrm_variance.x * shrm_variance.y));
+  vec3 sky = SkyShrmRadiance(reflect(ray, lobe_normal), sqrt(shrm_variance.x * shrm_variance.y));
+#ifdef SKY_MAP_ARRAY
+  // The hand-over to the view from space, as eq. 27's fetch below: from 20 km the grid reflects
+  // the sky as the view from space does (a pop of up to 28 % in the sky's rows at the switch
+  // before stop 39, when shrm kept its maps to the end).
+  sky = mix(sky,
+            OceanSkyArrayReflection(up, v, t_x, t_y, n, centre, sqrt(shrm_variance), sun),
+            sky_array_weight);
+#endif
+  sea += fresnel * sky;
 #else
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);

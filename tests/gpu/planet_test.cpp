@@ -66,6 +66,15 @@ TEST(PlanetSwitch, SameViewOnBothSidesOfTwentyKilometresDiffersByUnderOnePercent
            "ocean": {"wind_speed": 15, "lambda_max": 300}})"},
       {"horizon at sunset, sun behind",
        R"({"camera": {"pitch": -3, "heading": 90}, "sun": {"zenith": 85, "azimuth": 270}})"},
+      // The other sky filters hand over to the view from space as eq. 27's fetch does (shrm
+      // did not before stop 39: its sky's rows changed by -5 to +28 % at the switch).
+      {"oblique, shrm and the sky lobe",
+       R"({"camera": {"pitch": -30, "heading": 0}, "sun": {"zenith": 50, "azimuth": 0},
+           "ocean": {"wind_speed": 15, "sky_filter": "shrm",
+                     "sky_lobe_centre": "fresnel_weighted"}})"},
+      {"oblique, nine samples",
+       R"({"camera": {"pitch": -30, "heading": 0}, "sun": {"zenith": 50, "azimuth": 0},
+           "ocean": {"wind_speed": 15, "sky_filter": "nine_samples"}})"},
   };
   for (const View& view : views) {
     double sums[2] = {0.0, 0.0}, difference = 0.0;
