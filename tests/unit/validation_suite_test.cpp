@@ -118,7 +118,7 @@ TEST(ValidationSuite, DefaultSuiteIsTheDataFileAndCoversTheIssuesGrid) {
     }
   EXPECT_EQ(grid_cells, (std::set<double>{4, 8, 16}));
   EXPECT_EQ(waves, (std::set<double>{30, 60, 120}));
-  EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples"}));
+  EXPECT_EQ(filters, (std::set<std::string>{"texture_grad", "nine_samples", "shrm"}));
   EXPECT_EQ(fresnels, (std::set<std::string>{"fit", "table"}));
   EXPECT_EQ(lobes, (std::set<std::string>{"mirror", "fresnel_weighted"}));
 }
