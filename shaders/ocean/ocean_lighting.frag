@@ -131,6 +131,8 @@ void main() {
   const float fresnel = OceanSceneEffectiveFresnel(v_t, slope_variance, fresnel_r, centre);
   vec3 sea = vec3(0.0);
 #ifdef SKY_TERM
+  const vec2 clamped_variance = OceanClampedSlopeVariance(slope_variance);
+  const vec2 sigma = sqrt(clamped_variance);
 #ifdef SKY_SHRM
   // Eq. 21 with L-bar (eq. 22) from the SHRM-prefiltered maps, read by the mirror direction of
   // the mean normal. Two approximations (docs/spherical_harmonics.md): the slope density is made
@@ -142,26 +144,16 @@ void main() {
   // eq. 27's does: to the mirror direction of the facet whose slope is the centre (tangent frame;
   // the normal of slope zeta is n - zeta_x t_x - zeta_y t_y before normalising, the derivative
   // that OceanSkyMapGradients takes), exactly rather than to first order in the map.
-  const vec2 shrm_variance = OceanClampedSlopeVariance(slope_variance);
 #ifdef SKY_LOBE_FRESNEL_WEIGHTED
   const vec3 lobe_normal = normalize(n - centre.x * t_x - centre.y * t_y);
 #else
   const vec3 lobe_normal = n;
 #endif
-  vec3 sky = SkyShrmRadiance(reflect(ray, lobe_normal), sqrt(shrm_variance.x * shrm_variance.y));
-#ifdef SKY_MAP_ARRAY
-  // The hand-over to the view from space, as eq. 27's fetch below: from 20 km the grid reflects
-  // the sky as the view from space does (a pop of up to 28 % in the sky's rows at the switch
-  // before stop 39, when shrm kept its maps to the end).
-  sky = mix(sky,
-            OceanSkyArrayReflection(up, v, t_x, t_y, n, centre, sqrt(shrm_variance), sun),
-            sky_array_weight);
-#endif
-  sea += fresnel * sky;
+  vec3 sky =
+      SkyShrmRadiance(reflect(ray, lobe_normal), sqrt(clamped_variance.x * clamped_variance.y));
 #else
   vec2 u0, du_x, du_y;
   OceanSkyMapGradients(v, t_x, t_y, n, u0, du_x, du_y);
-  const vec2 sigma = sqrt(OceanClampedSlopeVariance(slope_variance));
 #ifdef SKY_LOBE_FRESNEL_WEIGHTED
   u0 += centre.x * du_x + centre.y * du_y;
 #endif
@@ -170,12 +162,15 @@ void main() {
 #else
   vec3 sky = SkyMapRadianceGrad(u0, 2.0 * sigma.x * du_x, 2.0 * sigma.y * du_y);
 #endif
+#endif  // SKY_SHRM
 #ifdef SKY_MAP_ARRAY
+  // The hand-over to the view from space, whatever the filter: from 20 km the grid reflects the
+  // sky as the view from space does (shrm kept its maps to the switch until stop 39, and the sky's
+  // rows jumped by up to 28 % there).
   sky = mix(sky, OceanSkyArrayReflection(up, v, t_x, t_y, n, centre, sigma, sun),
             sky_array_weight);
 #endif
   sea += fresnel * sky;
-#endif  // SKY_SHRM
 #endif
 #ifdef SEA_TERM
   sea += (1.0 - fresnel) * OceanDeepRadiance(deep_reflectance, light.irradiance);
