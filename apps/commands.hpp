@@ -84,6 +84,9 @@ struct ValidateArgs {
   bool resume = false;
   // --seas: each selected case drawn over this many seas (validation::expand_seas); 1: once.
   int seas = 1;
+  // --time-limit: seconds from the start after which no case is begun that the longest case
+  // of this run says would end past them; 0: none.
+  double time_limit = 0.0;
 };
 
 struct InfoArgs {

@@ -49,6 +49,12 @@ void ProgressBar::done(const std::string& item, const std::string& detail, doubl
   }
 }
 
+void ProgressBar::note(const std::string& message) {
+  // On a terminal the bar's line is cleared first; the next step draws the bar again below.
+  std::fprintf(out_, "%sthalassa: %s\n", tty_ ? "\r\033[K" : "", message.c_str());
+  std::fflush(out_);
+}
+
 void ProgressBar::finish() {
   if (tty_) std::fputc('\n', out_);
   std::fflush(out_);

@@ -20,6 +20,8 @@ class ProgressBar {
   void skipped(const std::string& item, const std::string& why);
   // A step done in `seconds`: "<item> [3/10] <detail> | 2.50 frames/s, 2m48s left".
   void done(const std::string& item, const std::string& detail, double seconds);
+  // A line of its own between steps ("thalassa: <message>"), which the bar does not draw over.
+  void note(const std::string& message);
   // Ends the bar's line (on a terminal).
   void finish();
 

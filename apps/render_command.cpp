@@ -28,6 +28,7 @@ std::string stats_json(const RenderStats& stats) {
   // Per row (NaN, a row not counted, is written null).
   if (!stats.sample_row_changes.empty()) json["sample_row_changes"] = stats.sample_row_changes;
   if (!stats.reference_sun.empty()) json["reference_sun"] = stats.reference_sun;
+  if (!stats.warnings.empty()) json["warnings"] = stats.warnings;
   if (stats.method == "reference" && stats.sun_lattice_ms > 0.0) {
     json["sun_lattice_row_change"] = stats.sun_lattice_row_change;
     json["sun_lattice_rows"] = stats.sun_lattice_rows;
@@ -36,6 +37,7 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_ms"] = stats.sun_lattice_ms;
     json["sun_lattice_margin"] = stats.sun_lattice_margin;
     json["sun_lattice_refine"] = stats.sun_lattice_refine;
+    json["sun_lattice_rescatters"] = stats.sun_lattice_rescatters;
     json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
     json["sun_lattice_cells_per_wavelength"] = stats.sun_lattice_cells_per_wavelength;
     json["sun_lattice_cells"] = stats.sun_lattice_cells;
@@ -237,6 +239,7 @@ int run_render(const RenderArgs& args) {
   }
   const Image image = renderer.image();
   const RenderStats stats = renderer.stats();
+  for (const std::string& warning : stats.warnings) print_error("warning: " + warning);
   const Image sun_sums = args.sun_sums.empty() ? Image{} : renderer.reference_sun_sums();
   if (!args.sun_sums.empty() && sun_sums.rgba.empty()) {
     print_error("--sun-sums: the render drew no scattered sun");  // checked above: not expected

@@ -366,12 +366,21 @@ class CaseRunner {
                                       : rendered.frames.back());
       if (k == 0) rendered.stats = renderer.stats();
       const double seconds = seconds_since(start);
-      char detail[160];
-      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s)",
+      // A lattice scattered again (its sums held what no scatter writes) is said in the log.
+      const int rescatters = renderer.stats().sun_lattice_rescatters;
+      char again[96] = "";
+      if (rescatters > 0)
+        std::snprintf(again, sizeof again, ", its sun's lattice scattered again %d time%s",
+                      rescatters, rescatters == 1 ? "" : "s");
+      char detail[256];
+      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s%s)",
                     method.name.c_str(), term.c_str(), k, renderer.stats().frame_ms,
                     renderer.stats().samples,
-                    renderer.stats().sun_lattice_reused ? ", its sun's lattice kept" : "");
+                    renderer.stats().sun_lattice_reused ? ", its sun's lattice kept" : "", again);
       bar_.done(c.name, detail, seconds);
+      for (const std::string& warning : renderer.stats().warnings)
+        bar_.note(c.name + ": " + method.name + ", " + term + ", frame " + std::to_string(k) +
+                  ": warning: " + warning);
     }
     return rendered;
   }
@@ -417,14 +426,29 @@ int retime_count(const Suite& suite, const CaseResult& kept) {
   return n;
 }
 
-// Whether every image a case's report names is in `dir` (a resumed run keeps it only then).
+// Whether every PNG image a case's report names is in `dir` (a resumed run keeps it only then).
+// Its EXR images may be gone: the report shows the PNGs, and its numbers are in results.json
+// (a GPU machine's report comes back without its EXRs where it would not fit: scripts/device).
 bool images_present(const CaseResult& c, const std::string& dir) {
   std::error_code error;
   for (const MethodResult& m : c.methods)
     for (const TermResult& t : m.terms)
-      for (const std::string& file : {t.exr, t.png})
-        if (!file.empty() && !fs::is_regular_file(fs::path(dir) / file, error)) return false;
+      if (!t.png.empty() && !fs::is_regular_file(fs::path(dir) / t.png, error)) return false;
   return true;
+}
+
+// A kept case without the EXR images of it that are gone from `dir` (their names dropped, so
+// that the report names no file it does not have); how many were dropped.
+int drop_missing_exrs(CaseResult& c, const std::string& dir) {
+  std::error_code error;
+  int dropped = 0;
+  for (MethodResult& m : c.methods)
+    for (TermResult& t : m.terms)
+      if (!t.exr.empty() && !fs::is_regular_file(fs::path(dir) / t.exr, error)) {
+        t.exr.clear();
+        ++dropped;
+      }
+  return dropped;
 }
 
 }  // namespace
@@ -481,9 +505,27 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
       ->check(CLI::Range(1, validation::kMaxSeas));
   validate->add_flag("--resume", args.resume,
                      "Keep the cases of the report already in the output folder that were run "
-                     "with the same inputs (scene, methods, settings, program and renderer), and "
-                     "render the rest; the report is rewritten after each case, so a run cut "
+                     "with the same inputs (scene, methods, settings, program and renderer) and "
+                     "whose PNG images are there (EXR images gone are left out of the report), "
+                     "and render the rest; the report is rewritten after each case, so a run cut "
                      "short can be resumed, and runs of different --case can be joined");
+  validate
+      ->add_option("--time-limit", args.time_limit,
+                   "Seconds from the start after which no case is begun that the longest case "
+                   "of this run says would end past them (the report holds the cases done, and "
+                   "--resume goes on; a case under way is not stopped)")
+      ->check(CLI::Validator(
+          [](const std::string& text) -> std::string {
+            double seconds = 0.0;
+            try {
+              seconds = std::stod(text);
+            } catch (const std::exception&) {
+            }
+            return seconds > 0.0 && std::isfinite(seconds)
+                       ? std::string()
+                       : "expected seconds greater than 0, got " + text;
+          },
+          "SECONDS > 0"));
 }
 
 namespace {
@@ -535,6 +577,7 @@ std::map<std::string, CaseResult> earlier_cases(const std::string& dir, const Su
 }  // namespace
 
 int run_validate(const ValidateArgs& args) {
+  const auto run_start = std::chrono::steady_clock::now();
   // 1. The suite, the output folder and gnuplot, before any render.
   Suite suite;
   std::vector<bool> selected;
@@ -639,8 +682,12 @@ int run_validate(const ValidateArgs& args) {
   // --case comes earlier in the suite than the kept ones loses any (until stop 23 a report was
   // written with the cases up to the one just run, and the kept ones after it were dropped).
   std::vector<std::optional<CaseResult>> results(suite.cases.size());
+  std::vector<int> exrs_gone(suite.cases.size(), 0);
   for (std::size_t i = 0; i < suite.cases.size(); ++i)
-    if (kept[i]) results[i] = *kept[i];
+    if (kept[i]) {
+      results[i] = *kept[i];
+      exrs_gone[i] = drop_missing_exrs(*results[i], args.dir);
+    }
   const auto write = [&]() {
     report.cases.clear();
     for (const std::optional<CaseResult>& r : results)
@@ -648,11 +695,23 @@ int run_validate(const ValidateArgs& args) {
     validation::write_report(report, args.dir);
   };
   int failed = 0, run = 0;
+  // --time-limit: the longest case rendered so far (s), and the first case not begun for it.
+  double longest_case = 0.0;
+  std::string stopped_before;
   for (std::size_t i = 0; i < suite.cases.size(); ++i) {
     const SuiteCase& c = suite.cases[i];
     if (!selected[i]) continue;
+    if (!kept[i] && args.time_limit > 0.0 &&
+        seconds_since(run_start) + longest_case > args.time_limit) {
+      stopped_before = c.name;
+      break;
+    }
+    const auto case_start = std::chrono::steady_clock::now();
     if (kept[i]) {
-      bar.skipped(c.name, "kept from the earlier run (--resume)");
+      bar.skipped(c.name, exrs_gone[i] > 0 ? "kept from the earlier run (--resume), without the " +
+                                                 std::to_string(exrs_gone[i]) +
+                                                 " EXR images gone from the folder"
+                                           : std::string("kept from the earlier run (--resume)"));
       // One timed at other settings than the suite's is timed again (its images are kept).
       if (retime_count(suite, *kept[i]) == 0) continue;
       runner.retime(c, *results[i]);
@@ -661,6 +720,7 @@ int run_validate(const ValidateArgs& args) {
       results[i]->fingerprint = fingerprints[i];
       results[i]->sea_of = c.sea_of;
       results[i]->sea = c.sea;
+      longest_case = std::max(longest_case, seconds_since(case_start));
     }
     ++run;
     if (!results[i]->passed()) {
@@ -690,6 +750,11 @@ int run_validate(const ValidateArgs& args) {
     }
   }
   const auto chosen = std::count(selected.begin(), selected.end(), true);
+  if (!stopped_before.empty())
+    std::fprintf(stderr,
+                 "thalassa: --time-limit %g s: stopped before case %s after %.0f s (the longest "
+                 "case took %.0f s); --resume goes on from there\n",
+                 args.time_limit, stopped_before.c_str(), seconds_since(run_start), longest_case);
   std::fprintf(stderr, "thalassa: %ld cases, %d not as expected; report in %s/index.html\n",
                static_cast<long>(chosen), failed, args.dir.c_str());
   return failed == 0 ? kExitOk : kExitRuntimeFailure;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ross_brdf_reference.hpp"
+#include "scattered_sun_sums.hpp"
 #include "thalassa/atmosphere/gl/sky_shrm.hpp"
 #include "thalassa/ocean/gl/effective_fresnel_texture.hpp"
 #include "thalassa/ocean/gl/local_features_gpu.hpp"
@@ -120,6 +121,9 @@ double scatter_iterations(int waves, int feature, int refine, int cells) {
 // guaranteed work-group count) and the most pixels added beyond each image edge.
 constexpr std::uint64_t kScatterBatch = 65535ull * 64ull;
 constexpr int kScatterMaxMargin = 256;
+// How many times a lattice whose sums hold what no scatter writes (scattered_sun_sums.hpp) is
+// scattered again before the render fails.
+constexpr int kScatterRetries = 2;
 // Its convergence measure's rows: not below this fraction of the brightest row's total (as the
 // renderer's kNegligibleRow), and resolved by both lattices to at least this fraction of their
 // sea (a row past the cap changes with the cap, not with the lattice).
@@ -369,7 +373,16 @@ class OceanNode final : public gl::Node {
             {"reference_sun.cells", double(lattice_cap_)},
             {"reference_sun.doublings", double(lattice_doublings_)},
             {"reference_sun.float_atomics", float_atomics_ ? 1.0 : 0.0},
+            {"reference_sun.rescatters", double(rescatters_)},
             {"reference_sun.reused", lattice_reused_ ? 1.0 : 0.0}};
+  }
+
+  std::vector<std::string> warnings() const override {
+    if (!reference_sun_scatter() || rescatters_ == 0) return {};
+    return {"the reference's sun: " + std::to_string(rescatters_) + " lattice" +
+            (rescatters_ == 1 ? "" : "s") +
+            " scattered again, whose sums held what no scatter writes (the last: " +
+            scatter_fault_ + ")"};
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
@@ -612,8 +625,11 @@ class OceanNode final : public gl::Node {
       reference_sun_buffer_ = gl::make_buffer();
       coarse_sun_buffer_ = gl::make_buffer();
       const auto bytes = static_cast<GLsizeiptr>(floats * sizeof(float));
-      glNamedBufferStorage(reference_sun_buffer_.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
-      glNamedBufferStorage(coarse_sun_buffer_.get(), bytes, nullptr, GL_DYNAMIC_STORAGE_BIT);
+      // Zeros rather than whatever the driver's new storage held (each scatter clears it too).
+      const std::vector<float> zeros(floats, 0.0f);
+      glNamedBufferStorage(reference_sun_buffer_.get(), bytes, zeros.data(),
+                           GL_DYNAMIC_STORAGE_BIT);
+      glNamedBufferStorage(coarse_sun_buffer_.get(), bytes, zeros.data(), GL_DYNAMIC_STORAGE_BIT);
       reference_sun_floats_ = floats;
       has_scatter_key_ = false;
     }
@@ -621,6 +637,8 @@ class OceanNode final : public gl::Node {
     key.pixel_offset = glm::dvec2(0.0);
     if (has_scatter_key_ && same_lattice(scatter_key_, key)) return;
     const auto start = std::chrono::steady_clock::now();
+    rescatters_ = 0;
+    scatter_fault_.clear();
     float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
     const double radius = provider_->planet_radius();
     // The first lattice asked for, and everything else the scatter reads.
@@ -788,9 +806,10 @@ class OceanNode final : public gl::Node {
                           waves_.lambda_min / cells_per_wavelength, cap, cache != nullptr);
     const bool measure = options_.reference_measure_lattice;
     if (measure)
-      run_scatter(programs, coarse_sun_buffer_.get(),
-                  waves_.lambda_min / cells_per_wavelength * std::sqrt(2.0),
-                  std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))));
+      scatter_checked(programs, coarse_sun_buffer_.get(),
+                      waves_.lambda_min / cells_per_wavelength * std::sqrt(2.0),
+                      std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), nullptr,
+                      false);
     lattice_doublings_ = 0;
     for (;;) {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -868,17 +887,57 @@ class OceanNode final : public gl::Node {
       }
   }
 
-  // run_scatter of the finer lattice (its footprints' cells per row into lattice_row_cells_);
-  // with `timed`, waited for, and its wall-clock time (ms), else 0 (a lattice no cache keeps
-  // needs no time of its own, and the GPU may overlap it with the next).
+  // scatter_checked of the finer lattice (its footprints' cells per row into
+  // lattice_row_cells_); with `timed`, its wall-clock time (ms), else 0 (a lattice no cache
+  // keeps needs no time of its own).
   double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
                            int cap, bool timed) {
-    const auto start = std::chrono::steady_clock::now();
-    run_scatter(programs, buffer, spacing, cap, &lattice_row_cells_);
-    if (!timed) return 0.0;
-    glFinish();
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-        .count();
+    return scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed);
+  }
+
+  // run_scatter, then its sums read back and checked (scattered_sun_sums.hpp): a lattice whose
+  // buffer holds what no scatter writes is scattered again, up to kScatterRetries times
+  // (rescatters_ counts them, scatter_fault_ says what the last held), and the render fails
+  // (gl::GlError) if the last is no better. With `timed`, the wall-clock time (ms) of the
+  // scatter that passed, waited for; else 0.
+  double scatter_checked(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
+                         int cap, ScatterRowCells* row_cells, bool timed) {
+    for (int attempt = 0;; ++attempt) {
+      const auto start = std::chrono::steady_clock::now();
+      run_scatter(programs, buffer, spacing, cap, row_cells);
+      if (timed) glFinish();
+      const double ms =
+          timed
+              ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                    .count()
+              : 0.0;
+      std::vector<float> sums(reference_sun_floats_);
+      if (injected_faults_ < options_.reference_sun_test_faults) {
+        // The H200's fault (scattered_sun_sums.hpp): the buffer overwritten with source text.
+        ++injected_faults_;
+        const char text[] = "Tail(IN(Number) tion w (tangent ";
+        for (std::size_t i = 0; i < sums.size(); ++i)
+          std::memcpy(&sums[i], text + 4 * (i % 8), sizeof(float));
+        glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
+                             sums.data());
+      }
+      glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
+                              sums.data());
+      const std::string fault = scattered_sun_sums_fault(sums, scatter_width_, scatter_height_);
+      if (fault.empty()) return ms;
+      ++rescatters_;
+      scatter_fault_ = fault;
+      if (attempt >= kScatterRetries) {
+        const GLenum reset = glGetGraphicsResetStatus();
+        const GLenum error = glGetError();
+        char codes[96];
+        std::snprintf(codes, sizeof codes, " (GL reset status 0x%04X, GL error 0x%04X)", reset,
+                      error);
+        throw gl::GlError("the reference's scattered sun: the lattice scattered " +
+                          std::to_string(attempt + 1) +
+                          " times holds what no scatter writes: " + fault + codes);
+      }
+    }
   }
 
   // One lattice (spacing m, at most cap^2 cells per pixel's footprint) into buffer, cleared
@@ -1119,6 +1178,12 @@ class OceanNode final : public gl::Node {
   int lattice_doublings_ = 0;
   bool float_atomics_ = false;  // the scatter adds with GL_NV_shader_atomic_float
   bool lattice_reused_ = false;  // drawn from options_.reference_sun_cache, not scattered
+  // The lattices scattered again this render because their sums held what no scatter writes
+  // (scatter_checked; warnings()), and what the last such held; the faults injected so far
+  // (OceanNodeOptions::reference_sun_test_faults).
+  int rescatters_ = 0;
+  std::string scatter_fault_;
+  int injected_faults_ = 0;
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests
 };

@@ -242,6 +242,7 @@ struct Renderer::Impl {
            .reference_float_atomics = options.reference.sun_float_atomics,
            .reference_sun_batch = options.reference.sun_batch_invocations,
            .reference_sun_cache = options.reference.sun_cache,
+           .reference_sun_test_faults = options.reference.sun_test_faults,
            .features = features}));
   }
 
@@ -610,6 +611,9 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_doublings = static_cast<int>(m.node_measurement("reference_sun.doublings"));
   stats.sun_lattice_float_atomics = m.node_measurement("reference_sun.float_atomics") > 0.0;
   stats.sun_lattice_reused = m.node_measurement("reference_sun.reused") > 0.0;
+  stats.sun_lattice_rescatters = static_cast<int>(m.node_measurement("reference_sun.rescatters"));
+  for (const auto& node : m.graph.nodes())
+    for (std::string& warning : node->warnings()) stats.warnings.push_back(std::move(warning));
   stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);

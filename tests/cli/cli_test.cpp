@@ -610,6 +610,32 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   EXPECT_EQ(methods[0]["terms"][0]["term"], "sky");
 }
 
+// --time-limit begins no case that the longest case so far says would end past the limit: a
+// limit already spent begins none (the report is written, with no case), and --resume goes on
+// from there; a limit far off runs them all.
+TEST_F(Cli, ValidateTimeLimitBeginsNoCaseItCannotEnd) {
+  write("s.json", R"({"suite": "limit", "base": {"image.width": 16, "image.height": 8,
+      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
+      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
+      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
+                {"name": "b", "set": {"ocean.wind_speed": 8}}]})");
+  const Result none = run("validate s.json -o out --time-limit 1e-6");
+  ASSERT_EQ(none.status, 0) << none.err;
+  EXPECT_NE(none.err.find("stopped before case a"), std::string::npos) << none.err;
+  EXPECT_EQ(read_json("out/results.json")["cases"].size(), 0u);
+  const Result all = run("validate s.json -o out --resume --time-limit 1e6");
+  ASSERT_EQ(all.status, 0) << all.err;
+  EXPECT_EQ(all.err.find("stopped before"), std::string::npos) << all.err;
+  EXPECT_EQ(read_json("out/results.json")["cases"].size(), 2u);
+  for (const std::string bad : {"0", "-5", "soon"}) {  // CLI11's usage error, status 2
+    const Result refused = run("validate s.json -o out --time-limit " + bad);
+    EXPECT_EQ(refused.status, 2) << refused.err;
+    EXPECT_NE(refused.err.find("--time-limit: expected seconds greater than 0, got " + bad),
+              std::string::npos)
+        << refused.err;
+  }
+}
+
 // --resume keeps the cases of the report in the folder that were run with the same inputs and
 // renders the rest, so that runs of different --case join into one report and a run cut short
 // goes on; a case whose inputs changed is rendered again. A folder holding another suite's
@@ -679,6 +705,34 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
   EXPECT_EQ(changed["cases"][0], first["cases"][0]);
   EXPECT_NE(changed["cases"][1]["fingerprint"], both["cases"][1]["fingerprint"]);
   EXPECT_EQ(changed["cases"][1]["set"]["ocean.wind_speed"], 12);
+
+  // Case a's EXR images gone (a GPU machine's report comes back without them where it would not
+  // fit, scripts/device/run): a is kept from its PNGs and numbers, the report names no EXR of a.
+  // Its PNG gone too: a is rendered again.
+  {
+    const auto a_png = dir_ / "out" / "images" / "a_reference_sky.png";
+    const auto png_time = fs::last_write_time(a_png);
+    for (const auto& entry : fs::directory_iterator(dir_ / "out" / "images"))
+      if (entry.path().filename().string().starts_with("a_") && entry.path().extension() == ".exr")
+        fs::remove(entry.path());
+    const Result without = run("validate s.json -o out --resume");
+    ASSERT_EQ(without.status, 0) << without.err;
+    EXPECT_NE(without.err.find("without the 2 EXR images gone"), std::string::npos) << without.err;
+    const auto kept = read_results();
+    EXPECT_EQ(kept["cases"][0]["fingerprint"], fingerprint_a);
+    EXPECT_EQ(fs::last_write_time(a_png), png_time);
+    for (const auto& method : kept["cases"][0]["methods"])
+      for (const auto& term : method["terms"]) {
+        EXPECT_EQ(term["exr"], "") << method["name"];
+        EXPECT_NE(term["png"], "") << method["name"];
+      }
+    EXPECT_EQ(kept["cases"][1], changed["cases"][1]);
+    fs::remove(a_png);
+    ASSERT_EQ(run("validate s.json -o out --resume").status, 0);
+    EXPECT_TRUE(fs::exists(a_image));
+    EXPECT_NE(read_results()["cases"][0]["methods"][0]["terms"][0]["exr"], "");
+    EXPECT_EQ(read_results()["cases"][1], changed["cases"][1]);
+  }
 
   // Without --resume the folder's report is replaced by this run's cases alone.
   ASSERT_EQ(run("validate s.json -o out --case b").status, 0);

@@ -685,6 +685,45 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   }
 }
 
+// A lattice whose sums hold what no scatter writes is scattered again (stop 40: on the H200 three
+// references' buffers read back as GLSL source text, ocean/src/scattered_sun_sums.hpp). The
+// test overwrites the first scatters' sums with that text (ReferenceSampling::sun_test_faults):
+// one such lattice is scattered again and the image is the sound render's; three in a row (past
+// the two retries) fail the render with what the buffer held, rather than draw it.
+TEST(OceanMethods, ScatteredSunHoldingWhatNoScatterWritesIsScatteredAgain) {
+  auto context = test::make_test_context();
+  const Scene scene = small_sun_scene();
+  RendererOptions options = reference_sun_options(4, 4, 1024);
+  options.reference.measure_lattice = false;  // one lattice per render
+  Renderer sound(*context, scene, options);
+  sound.render();
+  EXPECT_EQ(sound.stats().sun_lattice_rescatters, 0);
+  const std::vector<double> expected = green_row_totals(sound.image());
+  options.reference.sun_test_faults = 1;
+  Renderer again(*context, scene, options);
+  again.render();
+  EXPECT_EQ(again.stats().sun_lattice_rescatters, 1);
+  ASSERT_EQ(again.stats().warnings.size(), 1u);  // the user is told, with what the sums held
+  EXPECT_NE(again.stats().warnings[0].find("1.12855734e+27"), std::string::npos)
+      << again.stats().warnings[0];
+  EXPECT_TRUE(sound.stats().warnings.empty());
+  const RowChange change = worst_row_change(expected, green_row_totals(again.image()));
+  EXPECT_GE(change.rows, 8);
+  EXPECT_LT(change.worst, 1e-4);
+  options.reference.sun_test_faults = 3;
+  try {
+    // (The renderer's first frame, in its constructor, scatters the lattice.)
+    Renderer failing(*context, scene, options);
+    failing.render();
+    ADD_FAILURE() << "a lattice that held text three times was drawn";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    std::printf("%s\n", what.c_str());
+    EXPECT_NE(what.find("scattered 3 times holds what no scatter writes"), std::string::npos)
+        << what;
+  }
+}
+
 // Each footprint is cut into cells no wider than the spacing, at most cap^2 of them in whatever
 // shape its footprint has (since stop 34; until then at most the cap per side, which the long
 // and narrow footprints toward the horizon could not fit at any affordable cap). Here the top

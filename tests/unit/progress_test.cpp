@@ -25,12 +25,14 @@ TEST(Progress, LogLinesCountStepsAndEstimateTheTimeLeftFromWorkedStepsOnly) {
   ProgressBar progress(4, "renders", log);
   progress.skipped("case_a/full", "already written");
   progress.done("case_a/basic", "sun: 0.50 s", 0.5);
+  progress.note("case_a/basic: warning: a lattice scattered again");  // a line of its own
   progress.done("case_b/full", "sun: 1.50 s", 1.5);
   progress.finish();
   // 2 steps in 2 s: 1 step/s, 1 step left.
   EXPECT_EQ(contents(log),
             "case_a/full [1/4]: skipped (already written)\n"
             "case_a/basic [2/4] sun: 0.50 s | 2.00 renders/s, 1s left\n"
+            "thalassa: case_a/basic: warning: a lattice scattered again\n"
             "case_b/full [3/4] sun: 1.50 s | 1.00 renders/s, 1s left\n");
   EXPECT_EQ(progress.done_count(), 3);
   EXPECT_EQ(progress.worked_count(), 2);

@@ -93,6 +93,12 @@ struct RenderStats {
   // sun_lattice_ms is that lattice's own scatter time (what the image cost, not spent by this
   // render), and the lattice is not measured (sun_lattice_rows 0).
   bool sun_lattice_reused = false;
+  // Lattices scattered again because their sums held what no scatter writes (the H200's text
+  // of stop 40: ocean/src/scattered_sun_sums.hpp); 0 as a rule.
+  int sun_lattice_rescatters = 0;
+  // What the scene graph's nodes had to work around in this render, in words (gl::Node::
+  // warnings: a rescattered lattice and what its sums held); empty as a rule.
+  std::vector<std::string> warnings;
   // The reference method with the sun term: per image row (top first), the fraction of its
   // pixels whose sun was integrated over cells that resolve every wave (sky pixels count as
   // resolved); the validation compares methods on the resolved rows only. Empty otherwise.
@@ -220,6 +226,9 @@ struct ReferenceSampling {
   // RenderStats::sun_lattice_reused). validate keeps one per reference, so that its term `all`
   // draws the lattice its sun term converged to. Null: every render scatters its own.
   std::shared_ptr<ocean::ScatteredSunCache> sun_cache;
+  // For tests (OceanNodeOptions::reference_sun_test_faults): this many of the first lattices
+  // scattered are overwritten with garbage before they are checked, and scattered again.
+  int sun_test_faults = 0;
 };
 
 struct RendererOptions {

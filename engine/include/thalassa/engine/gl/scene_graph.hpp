@@ -99,6 +99,9 @@ class Node {
   // The same, four numbers per pixel of the image (rows top first), read back from the GPU: the
   // node's GL context must be current. Each name says what its channels hold.
   virtual std::vector<std::pair<std::string, Image>> pixel_measurements() const { return {}; }
+  // What the node had to work around in its last computation, in words, for the statistics and
+  // the user (the ocean's reference sun: a lattice scattered again, and why); empty as a rule.
+  virtual std::vector<std::string> warnings() const { return {}; }
 };
 
 class SceneGraph {
