@@ -117,6 +117,29 @@ double scatter_iterations(int waves, int feature, int refine, int cells) {
   return fixed + cells * cell;
 }
 
+// The solid angle (sr) of the sea at rest in the camera's image: each pixel's solid angle (its
+// area on the image plane at unit distance over |ray|^3) times the share of its kSubsamples^2
+// points whose rays meet the sea. For the check of the scattered sun's coverage
+// (scattered_sun_coverage_fault), which needs it to a few per cent.
+double sea_solid_angle(const GridCamera& camera) {
+  constexpr int kSubsamples = 4;
+  const double du = 2.0 / camera.width, dv = 2.0 / camera.height_px;
+  // The image plane's area per subsample at unit distance along `forward`.
+  const double area = (du * camera.tan_half_fov_y * camera.aspect) * (dv * camera.tan_half_fov_y) /
+                      (kSubsamples * kSubsamples);
+  double total = 0.0;
+  for (int y = 0; y < camera.height_px * kSubsamples; ++y)
+    for (int x = 0; x < camera.width * kSubsamples; ++x) {
+      const glm::dvec2 image(-1.0 + (x + 0.5) * du / kSubsamples,
+                             -1.0 + (y + 0.5) * dv / kSubsamples);
+      glm::dvec3 point;
+      if (!sea_point(camera, image, point)) continue;
+      const double length = glm::length(grid_ray(camera, image));
+      total += area / (length * length * length);
+    }
+  return total;
+}
+
 // The scattered sun's lattice: invocations per dispatch (65535 work groups of 64, GL's smallest
 // guaranteed work-group count) and the most pixels added beyond each image edge.
 constexpr std::uint64_t kScatterBatch = 65535ull * 64ull;
@@ -625,11 +648,13 @@ class OceanNode final : public gl::Node {
       reference_sun_buffer_ = gl::make_buffer();
       coarse_sun_buffer_ = gl::make_buffer();
       const auto bytes = static_cast<GLsizeiptr>(floats * sizeof(float));
-      // Zeros rather than whatever the driver's new storage held (each scatter clears it too).
-      const std::vector<float> zeros(floats, 0.0f);
-      glNamedBufferStorage(reference_sun_buffer_.get(), bytes, zeros.data(),
+      // NaN rather than whatever the driver's new storage held: only a clear and a scatter that
+      // reached the buffer replace it, so that scatter_checked sees one that did not.
+      const std::vector<float> unwritten(floats, std::numeric_limits<float>::quiet_NaN());
+      glNamedBufferStorage(reference_sun_buffer_.get(), bytes, unwritten.data(),
                            GL_DYNAMIC_STORAGE_BIT);
-      glNamedBufferStorage(coarse_sun_buffer_.get(), bytes, zeros.data(), GL_DYNAMIC_STORAGE_BIT);
+      glNamedBufferStorage(coarse_sun_buffer_.get(), bytes, unwritten.data(),
+                           GL_DYNAMIC_STORAGE_BIT);
       reference_sun_floats_ = floats;
       has_scatter_key_ = false;
     }
@@ -639,6 +664,7 @@ class OceanNode final : public gl::Node {
     const auto start = std::chrono::steady_clock::now();
     rescatters_ = 0;
     scatter_fault_.clear();
+    scatter_sea_solid_angle_ = sea_solid_angle(camera);
     float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
     const double radius = provider_->planet_radius();
     // The first lattice asked for, and everything else the scatter reads.
@@ -913,17 +939,23 @@ class OceanNode final : public gl::Node {
               : 0.0;
       std::vector<float> sums(reference_sun_floats_);
       if (injected_faults_ < options_.reference_sun_test_faults) {
-        // The H200's fault (scattered_sun_sums.hpp): the buffer overwritten with source text.
-        ++injected_faults_;
+        // The H200's fault (scattered_sun_sums.hpp), the buffer overwritten with source text,
+        // then zeros (a scatter lost after its clear), in turn.
         const char text[] = "Tail(IN(Number) tion w (tangent ";
         for (std::size_t i = 0; i < sums.size(); ++i)
-          std::memcpy(&sums[i], text + 4 * (i % 8), sizeof(float));
+          if (injected_faults_ % 2 == 0)
+            std::memcpy(&sums[i], text + 4 * (i % 8), sizeof(float));
+          else
+            sums[i] = 0.0f;
+        ++injected_faults_;
         glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
                              sums.data());
       }
+      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
       glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
                               sums.data());
-      const std::string fault = scattered_sun_sums_fault(sums, scatter_width_, scatter_height_);
+      std::string fault = scattered_sun_sums_fault(sums, scatter_width_, scatter_height_);
+      if (fault.empty()) fault = scattered_sun_coverage_fault(sums, scatter_sea_solid_angle_);
       if (fault.empty()) return ms;
       ++rescatters_;
       scatter_fault_ = fault;
@@ -1183,6 +1215,7 @@ class OceanNode final : public gl::Node {
   // (OceanNodeOptions::reference_sun_test_faults).
   int rescatters_ = 0;
   std::string scatter_fault_;
+  double scatter_sea_solid_angle_ = 0.0;  // sr, of the sea at rest in the image (the check's)
   int injected_faults_ = 0;
   double hidden_fraction_ =
       0.0;  // of the front-facing cells' solid angle, behind the grid's crests

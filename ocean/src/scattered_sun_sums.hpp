@@ -14,7 +14,12 @@
 // scatter had written. Why is not known (llvmpipe never showed it; the same lattice of the same
 // view at t = 0 was sound). Such text passes as floats of 1e-19 to 1e35; these tests catch a
 // buffer of it with near certainty (a pixel's four words pass together only when their last
-// bytes are spaces, digits or punctuation), and the ocean node then scatters again.
+// bytes are spaces, digits or punctuation), and the ocean node then scatters again. The second
+// call (stop 40) found the same renders' buffers text again, one of them now frame 0's: a fresh
+// buffer and a scatter of 10 s or more, but not every such. Since the fault may as well leave
+// zeros, or what the clear wrote, the lattice's solid angle is checked against the sea's in the
+// image too (scattered_sun_coverage_fault), and new storage starts as NaN, which only a clear
+// and a scatter that reached the buffer replace.
 #pragma once
 
 #include <cmath>
@@ -61,6 +66,31 @@ inline std::string scattered_sun_sums_fault(std::span<const float> sums, int wid
            ") (sum omega sun, sum omega, unresolved, hidden; sr): " + values;
   }
   return {};
+}
+
+// The least fraction of the sea's solid angle in the image (at rest) that a lattice's cells cover,
+// visible (sum omega) and hidden (behind the grid's crests) together: the cells tile the sea in
+// view (the cells' solid angles are the pixels' on a calm sea to 4e-6: tests/gpu/method_test.cpp,
+// ScatteredSunsSolidAnglesAreThePixels); only the facets that face away from the eye are in
+// neither, a small part of any view. Measured on the default suite's views (stop 40, llvmpipe):
+// 1.00-1.19 of the sea's (the displaced sea's folds and the margins' cells seen in the image
+// add to it), from 8 km over the 10 m/s sea to 4 m over the 20 m/s.
+inline constexpr double kScatteredSunLeastCoverage = 0.5;
+
+// Empty when the sums' solid angle, visible and hidden, is at least kScatteredSunLeastCoverage of
+// sea_solid_angle (sr, the sea at rest's in the image; 0: nothing to check); else what it is.
+inline std::string scattered_sun_coverage_fault(std::span<const float> sums,
+                                                double sea_solid_angle) {
+  if (!(sea_solid_angle > 0.0)) return {};
+  double covered = 0.0;
+  for (std::size_t i = 0; i + 3 < sums.size(); i += 4) covered += double(sums[i + 1]) + sums[i + 3];
+  if (covered >= kScatteredSunLeastCoverage * sea_solid_angle) return {};
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "the cells' solid angle, %.6g sr visible and hidden, is under %g of the sea's in "
+                "the image, %.6g sr",
+                covered, kScatteredSunLeastCoverage, sea_solid_angle);
+  return text;
 }
 
 }  // namespace thalassa::ocean

@@ -687,9 +687,10 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
 
 // A lattice whose sums hold what no scatter writes is scattered again (stop 40: on the H200 three
 // references' buffers read back as GLSL source text, ocean/src/scattered_sun_sums.hpp). The
-// test overwrites the first scatters' sums with that text (ReferenceSampling::sun_test_faults):
-// one such lattice is scattered again and the image is the sound render's; three in a row (past
-// the two retries) fail the render with what the buffer held, rather than draw it.
+// test overwrites the first scatters' sums with that text, then with zeros (a scatter lost after
+// its clear), in turn (ReferenceSampling::sun_test_faults): two such lattices are scattered again
+// and the image is the sound render's; three in a row (past the two retries) fail the render
+// with what the buffer held, rather than draw it.
 TEST(OceanMethods, ScatteredSunHoldingWhatNoScatterWritesIsScatteredAgain) {
   auto context = test::make_test_context();
   const Scene scene = small_sun_scene();
@@ -699,13 +700,17 @@ TEST(OceanMethods, ScatteredSunHoldingWhatNoScatterWritesIsScatteredAgain) {
   sound.render();
   EXPECT_EQ(sound.stats().sun_lattice_rescatters, 0);
   const std::vector<double> expected = green_row_totals(sound.image());
-  options.reference.sun_test_faults = 1;
+  options.reference.sun_test_faults = 2;
   Renderer again(*context, scene, options);
   again.render();
-  EXPECT_EQ(again.stats().sun_lattice_rescatters, 1);
-  ASSERT_EQ(again.stats().warnings.size(), 1u);  // the user is told, with what the sums held
-  EXPECT_NE(again.stats().warnings[0].find("1.12855734e+27"), std::string::npos)
-      << again.stats().warnings[0];
+  EXPECT_EQ(again.stats().sun_lattice_rescatters, 2);
+  // The user is told, with what the last held: zeros, whose solid angle is not the sea's.
+  ASSERT_EQ(again.stats().warnings.size(), 1u);
+  const std::string warning = again.stats().warnings[0];  // (stats() is a copy)
+  std::printf("%s\n", warning.c_str());
+  EXPECT_NE(warning.find("2 lattices scattered again"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("0 sr visible and hidden, is under 0.5 of the sea's"), std::string::npos)
+      << warning;
   EXPECT_TRUE(sound.stats().warnings.empty());
   const RowChange change = worst_row_change(expected, green_row_totals(again.image()));
   EXPECT_GE(change.rows, 8);

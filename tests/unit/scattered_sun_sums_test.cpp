@@ -102,5 +102,23 @@ TEST(ScatteredSunSums, WhatNoScatterWritesIsCaughtAndPlaced) {
   EXPECT_NE(scattered_sun_sums_fault(plausible_sums(4), kWidth, kHeight + 1), "");
 }
 
+// The cells' solid angle against the sea's in the image: at least half passes (the facets facing
+// away from the eye are in neither sum), zeros, a few pixels' worth or NaN do not; no sea in view
+// checks nothing.
+TEST(ScatteredSunSums, CoverageBelowHalfTheSeaIsCaught) {
+  const std::vector<float> sums = plausible_sums(5);
+  double covered = 0.0;
+  for (std::size_t i = 0; i < sums.size(); i += 4) covered += double(sums[i + 1]) + sums[i + 3];
+  EXPECT_EQ(scattered_sun_coverage_fault(sums, covered), "");
+  EXPECT_EQ(scattered_sun_coverage_fault(sums, 1.9 * covered), "");
+  const std::string fault = scattered_sun_coverage_fault(sums, 2.1 * covered);
+  EXPECT_NE(fault.find("under 0.5 of the sea's"), std::string::npos) << fault;
+  EXPECT_NE(scattered_sun_coverage_fault(std::vector<float>(sums.size(), 0.0f), 1e-3), "");
+  std::vector<float> unwritten = sums;
+  unwritten[5] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(scattered_sun_coverage_fault(unwritten, covered), "");
+  EXPECT_EQ(scattered_sun_coverage_fault(std::vector<float>(sums.size(), 0.0f), 0.0), "");
+}
+
 }  // namespace
 }  // namespace thalassa::ocean
