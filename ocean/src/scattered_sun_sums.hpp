@@ -72,9 +72,11 @@ inline std::string scattered_sun_sums_fault(std::span<const float> sums, int wid
 // visible (sum omega) and hidden (behind the grid's crests) together: the cells tile the sea in
 // view (the cells' solid angles are the pixels' on a calm sea to 4e-6: tests/gpu/method_test.cpp,
 // ScatteredSunsSolidAnglesAreThePixels); only the facets that face away from the eye are in
-// neither, a small part of any view. Measured on the default suite's views (stop 40, llvmpipe):
-// 1.00-1.19 of the sea's (the displaced sea's folds and the margins' cells seen in the image
-// add to it), from 8 km over the 10 m/s sea to 4 m over the 20 m/s.
+// neither, a small part of any view. Measured (stop 40, llvmpipe): 1.00-1.19 of the sea's on the
+// default suite's views, from 8 km over the 10 m/s sea to 4 m over the 20 m/s (the displaced
+// sea's folds and the margins' cells seen in the image add to it); 1.3-1.5 from 1 and 4 m over
+// the 20 m/s sea pitched 2-8 degrees up, and 2-8 where the image holds only the last 1-2.5
+// degrees below the horizon (crests rise above the sea at rest's horizon): never below 1.
 inline constexpr double kScatteredSunLeastCoverage = 0.5;
 
 // Empty when the sums' solid angle, visible and hidden, is at least kScatteredSunLeastCoverage of
