@@ -8,18 +8,18 @@
 // angles no larger than the sphere's.
 //
 // Why it is checked (stop 40). On the H200 three references of the default suite at 2048^2
-// cells per footprint (the flicker frame of the term `all`) drew a sun that was not finite in
-// 8-10 % of their pixels, and the sums read back from the buffer were, as bytes, GLSL source
-// text ("Tail(IN(Number) ", "tion w (tangent "): memory that neither the buffer's clear nor the
-// scatter had written. Why is not known (llvmpipe never showed it; the same lattice of the same
-// view at t = 0 was sound). Such text passes as floats of 1e-19 to 1e35; these tests catch a
-// buffer of it with near certainty (a pixel's four words pass together only when their last
-// bytes are spaces, digits or punctuation), and the ocean node then scatters again. The second
-// call (stop 40) found the same renders' buffers text again, one of them now frame 0's: a fresh
-// buffer and a scatter of 10 s or more, but not every such. Since the fault may as well leave
-// zeros, or what the clear wrote, the lattice's solid angle is checked against the sea's in the
-// image too (scattered_sun_coverage_fault), and new storage starts as NaN, which only a clear
-// and a scatter that reached the buffer replace.
+// cells per footprint drew a sun that was not finite in 8-10 % of their pixels, in both of that
+// stop's calls, and the sums read back were, as bytes, GLSL source text ("Tail(IN(Number) ",
+// "tion w (tangent "): all of the buffer held memory that neither its clear nor the scatter had
+// written. Each was a renderer's first scatter, into a buffer just made, of 8-17 s; the same
+// lattice as a later scatter into buffers used before was sound; llvmpipe never showed it. Why
+// is not known. Such text passes as floats of 1e-19 to 1e35: the tests below catch a buffer of
+// it with near certainty (a pixel's four words pass together only where their last bytes are
+// spaces, digits or punctuation). Since the fault may as well leave zeros, or what the clear
+// wrote, the cells' solid angle is checked against the sea's in the image too
+// (scattered_sun_coverage_fault), and new storage starts as NaN, which only a clear and a
+// scatter that reached the buffer replace. A lattice that fails is scattered again (ocean_node.cpp,
+// scatter_checked).
 #pragma once
 
 #include <cmath>
@@ -32,8 +32,9 @@ namespace thalassa::ocean {
 
 // sr: no solid angle exceeds the sphere's (a pixel's is far smaller).
 inline constexpr double kScatteredSunMostSolidAngle = 4.0 * 3.14159265358979323846;
-// The relative slack on unresolved <= sum omega: the two sums add the same omegas in orders the
-// float atomics do not fix (float's 6e-8 per addition, over at most 2^24 cells a pixel).
+// The relative slack on unresolved <= sum omega: the two sums add the same omegas, but the float
+// atomics add a pixel's partial sums (one per invocation's run of cells) in orders that may
+// differ between the two (float's 6e-8 per addition; 1e-3 leaves room for thousands).
 inline constexpr double kScatteredSunUnresolvedSlack = 1e-3;
 
 // Empty when every pixel's sums are what a scatter can write; else what the first pixel that is
