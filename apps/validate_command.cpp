@@ -366,18 +366,13 @@ class CaseRunner {
                                       : rendered.frames.back());
       if (k == 0) rendered.stats = renderer.stats();
       const double seconds = seconds_since(start);
-      // A lattice scattered again (its sums held what no scatter writes) is said in the log.
-      const int rescatters = renderer.stats().sun_lattice_rescatters;
-      char again[96] = "";
-      if (rescatters > 0)
-        std::snprintf(again, sizeof again, ", its sun's lattice scattered again %d time%s",
-                      rescatters, rescatters == 1 ? "" : "s");
-      char detail[256];
-      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s%s)",
+      char detail[160];
+      std::snprintf(detail, sizeof detail, "%s, %s, frame %d: %.0f ms (%d samples%s)",
                     method.name.c_str(), term.c_str(), k, renderer.stats().frame_ms,
                     renderer.stats().samples,
-                    renderer.stats().sun_lattice_reused ? ", its sun's lattice kept" : "", again);
+                    renderer.stats().sun_lattice_reused ? ", its sun's lattice kept" : "");
       bar_.done(c.name, detail, seconds);
+      // What the render worked around (a lattice scattered again, and why), a line of its own.
       for (const std::string& warning : renderer.stats().warnings)
         bar_.note(c.name + ": " + method.name + ", " + term + ", frame " + std::to_string(k) +
                   ": warning: " + warning);

@@ -664,7 +664,6 @@ class OceanNode final : public gl::Node {
     const auto start = std::chrono::steady_clock::now();
     rescatters_ = 0;
     scatter_fault_.clear();
-    scatter_sea_solid_angle_ = sea_solid_angle(camera);
     float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
     const double radius = provider_->planet_radius();
     // The first lattice asked for, and everything else the scatter reads.
@@ -825,6 +824,8 @@ class OceanNode final : public gl::Node {
                    kReferenceMaxCellsPerWavelength);
     int cap = first_cap;
     const int most_cap = std::clamp(options_.reference_max_sun_cells, first_cap, kScatterMaxCells);
+    // What the check of each lattice holds its cells' solid angle to (scatter_checked).
+    scatter_sea_solid_angle_ = sea_solid_angle(camera);
     // The finer lattice's own time (ms, to its end on the GPU), kept with it in the cache for a
     // render that draws it from there: the time its image cost.
     double finer_ms =
