@@ -82,6 +82,9 @@ struct ValidateArgs {
   int reference_sun_cells = 0;
   // --resume: keep the cases of the report already in `dir` that were run with the same inputs.
   bool resume = false;
+  // --no-exr: the report's images as PNG only (no EXR written, none named), for a report that
+  // must travel small (scripts/device/run).
+  bool no_exr = false;
   // --seas: each selected case drawn over this many seas (validation::expand_seas); 1: once.
   int seas = 1;
   // --time-limit: seconds from the start after which no case is begun that the longest case

@@ -70,8 +70,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 class CaseRunner {
  public:
-  CaseRunner(const Suite& suite, GlContext& context, const std::string& dir, ProgressBar& bar)
-      : suite_(suite), context_(context), dir_(dir), bar_(bar) {}
+  // With write_exr false the images are written as PNG alone (--no-exr).
+  CaseRunner(const Suite& suite, GlContext& context, const std::string& dir, ProgressBar& bar,
+             bool write_exr)
+      : suite_(suite), context_(context), dir_(dir), bar_(bar), write_exr_(write_exr) {}
 
   CaseResult run(const SuiteCase& c) {
     CaseResult result;
@@ -236,12 +238,14 @@ class CaseRunner {
         t.frame_ms = rendered.stats.frame_ms;
         t.samples = rendered.stats.samples;
         const std::string stem = "images/" + c.name + "_" + method->name + "_" + term;
-        t.exr = stem + ".exr";
         t.png = stem + ".png";
-        write_exr((fs::path(dir_) / t.exr).string(), rendered.frames.front(), ExrPixelType::Float,
-                  {{"thalassa:case", c.name},
-                   {"thalassa:method", method->method},
-                   {"thalassa:terms", validation::terms_option(term)}});
+        if (write_exr_) {
+          t.exr = stem + ".exr";
+          write_exr((fs::path(dir_) / t.exr).string(), rendered.frames.front(), ExrPixelType::Float,
+                    {{"thalassa:case", c.name},
+                     {"thalassa:method", method->method},
+                     {"thalassa:terms", validation::terms_option(term)}});
+        }
         write_png((fs::path(dir_) / t.png).string(), rendered.frames.front(), scene.image.exposure);
         if (job.is_reference) {
           reference_images[{job.against, term}] = rendered;
@@ -384,6 +388,7 @@ class CaseRunner {
   GlContext& context_;
   std::string dir_;
   ProgressBar& bar_;
+  bool write_exr_ = true;
 };
 
 // The renders a case asks for, for the progress bar: per method (and own reference), per term,
@@ -504,6 +509,10 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
                      "whose PNG images are there (EXR images gone are left out of the report), "
                      "and render the rest; the report is rewritten after each case, so a run cut "
                      "short can be resumed, and runs of different --case can be joined");
+  validate->add_flag("--no-exr", args.no_exr,
+                     "Write the images as PNG only, no EXR (the PNGs, plots and numbers are the "
+                     "whole report): for a report that must travel small, such as a lent GPU "
+                     "machine's (scripts/device/run); --resume keeps its cases either way");
   validate
       ->add_option("--time-limit", args.time_limit,
                    "Seconds from the start after which no case is begun that the longest case "
@@ -671,7 +680,7 @@ int run_validate(const ValidateArgs& args) {
       steps += keep ? 1 + retime_count(suite, found->second) : render_count(suite, c);
   }
   ProgressBar bar(steps, "renders");
-  CaseRunner runner(suite, *context, args.dir, bar);
+  CaseRunner runner(suite, *context, args.dir, bar, !args.no_exr);
   // Per case, in the suite's order: its result once known. The kept ones are known from the
   // start, so that every report written holds them all: neither a run cut short nor one whose
   // --case comes earlier in the suite than the kept ones loses any (until stop 23 a report was

@@ -636,6 +636,43 @@ TEST_F(Cli, ValidateTimeLimitBeginsNoCaseItCannotEnd) {
   }
 }
 
+// --no-exr writes the images as PNG alone and the report names no EXR (a report that travels
+// small: scripts/device/run); --resume keeps its cases, and a later run with EXRs keeps them
+// too while writing EXRs for the cases it renders.
+TEST_F(Cli, ValidateWithoutExrWritesPngsAlone) {
+  write("s.json", R"({"suite": "small", "base": {"image.width": 16, "image.height": 8,
+      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
+      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
+      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
+                {"name": "b", "set": {"ocean.wind_speed": 8}}]})");
+  const Result r = run("validate s.json -o out --case a --no-exr");
+  ASSERT_EQ(r.status, 0) << r.err;
+  int pngs = 0;
+  for (const auto& entry : fs::directory_iterator(dir_ / "out" / "images")) {
+    EXPECT_NE(entry.path().extension(), ".exr") << entry.path();
+    pngs += entry.path().extension() == ".png";
+  }
+  EXPECT_EQ(pngs, 2);  // the reference's and full's sky
+  const auto first = read_json("out/results.json");
+  for (const auto& method : first["cases"][0]["methods"])
+    for (const auto& term : method["terms"]) {
+      EXPECT_EQ(term["exr"], "") << method["name"];
+      EXPECT_TRUE(fs::exists(dir_ / "out" / term["png"].get<std::string>())) << method["name"];
+    }
+  std::ifstream html(dir_ / "out" / "index.html");
+  const std::string page{std::istreambuf_iterator<char>(html), std::istreambuf_iterator<char>()};
+  EXPECT_EQ(page.find(".exr"), std::string::npos);
+  const Result resumed = run("validate s.json -o out --resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("kept from the earlier run (--resume)"), std::string::npos)
+      << resumed.err;
+  const auto both = read_json("out/results.json");
+  ASSERT_EQ(both["cases"].size(), 2u);
+  EXPECT_EQ(both["cases"][0], first["cases"][0]);
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "images" / "b_reference_sky.exr"));
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "images" / "a_reference_sky.exr"));
+}
+
 // --resume keeps the cases of the report in the folder that were run with the same inputs and
 // renders the rest, so that runs of different --case join into one report and a run cut short
 // goes on; a case whose inputs changed is rendered again. A folder holding another suite's
