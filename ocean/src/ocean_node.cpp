@@ -401,11 +401,18 @@ class OceanNode final : public gl::Node {
   }
 
   std::vector<std::string> warnings() const override {
-    if (!reference_sun_scatter() || rescatters_ == 0) return {};
-    return {"the reference's sun: " + std::to_string(rescatters_) + " lattice" +
-            (rescatters_ == 1 ? "" : "s") +
-            " scattered again, whose sums held what no scatter writes (the last: " +
-            scatter_fault_ + ")"};
+    if (!reference_sun_scatter()) return {};
+    std::vector<std::string> warnings;
+    if (rescatters_ > 0)
+      warnings.push_back("the reference's sun: " + std::to_string(rescatters_) + " lattice" +
+                         (rescatters_ == 1 ? "" : "s") +
+                         " scattered again, whose sums held what no scatter writes (the last: " +
+                         scatter_fault_ + ")");
+    if (reuploads_ > 0)
+      warnings.push_back("the reference's sun: the kept lattice sent again " +
+                         std::to_string(reuploads_) + " time" + (reuploads_ == 1 ? "" : "s") +
+                         ", since it read back otherwise than it was sent");
+    return warnings;
   }
 
   std::vector<std::pair<std::string, std::vector<double>>> row_measurements() const override {
@@ -663,6 +670,7 @@ class OceanNode final : public gl::Node {
     if (has_scatter_key_ && same_lattice(scatter_key_, key)) return;
     const auto start = std::chrono::steady_clock::now();
     rescatters_ = 0;
+    reuploads_ = 0;
     scatter_fault_.clear();
     float_atomics_ = options_.reference_float_atomics && GLAD_GL_NV_shader_atomic_float;
     const double radius = provider_->planet_radius();
@@ -690,8 +698,7 @@ class OceanNode final : public gl::Node {
                       same_cache_key(cache->lattice->key, cache_key);
     if (lattice_reused_) {
       const ScatteredSunCache::Lattice& kept = *cache->lattice;
-      glNamedBufferSubData(reference_sun_buffer_.get(), 0,
-                           static_cast<GLsizeiptr>(floats * sizeof(float)), kept.sums.data());
+      upload_checked(kept.sums);
       lattice_cells_per_wavelength_ = kept.key.cells_per_wavelength;
       lattice_cap_ = kept.key.cells;
       lattice_doublings_ = 0;
@@ -836,7 +843,7 @@ class OceanNode final : public gl::Node {
       scatter_checked(programs, coarse_sun_buffer_.get(),
                       waves_.lambda_min / cells_per_wavelength * std::sqrt(2.0),
                       std::max(1, static_cast<int>(std::lround(cap / std::sqrt(2.0)))), nullptr,
-                      false);
+                      false, coarse_sums_);
     lattice_doublings_ = 0;
     for (;;) {
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -856,6 +863,7 @@ class OceanNode final : public gl::Node {
       const double finer = std::min(finer_unclamped, most_cells_per_wavelength);
       // The finer lattice becomes the coarser one it is measured against.
       std::swap(reference_sun_buffer_, coarse_sun_buffer_);
+      std::swap(finer_sums_, coarse_sums_);
       cells_per_wavelength = finer;
       cap = finer_cap;
       finer_ms = run_scatter_timed(programs, reference_sun_buffer_.get(),
@@ -869,13 +877,11 @@ class OceanNode final : public gl::Node {
       cache_key.cells_per_wavelength = cells_per_wavelength;
       cache_key.cells = cap;
       ScatteredSunCache::Lattice kept{.key = cache_key,
-                                      .sums = std::vector<float>(floats),
+                                      .sums = finer_sums_,
                                       .margin = scatter_margin_,
                                       .refine = scatter_refine_,
                                       .hidden_fraction = hidden_fraction_,
                                       .ms = finer_ms};
-      glGetNamedBufferSubData(reference_sun_buffer_.get(), 0,
-                              static_cast<GLsizeiptr>(floats * sizeof(float)), kept.sums.data());
       cache->lattice = std::move(kept);
     }
     scatter_ms_ =
@@ -889,13 +895,13 @@ class OceanNode final : public gl::Node {
   // finer lattice in reference_sun_buffer_ and, when measured, the coarser in coarse_sun_buffer_;
   // hidden_fraction_ from the finer.
   void measure_lattice(const gl::FrameInputs& inputs, bool measure) {
-    const SunRows fine = sun_rows(reference_sun_buffer_.get(), inputs);
+    const SunRows fine = sun_rows(finer_sums_, inputs);
     hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
     lattice_row_change_ = 0.0;
     lattice_rows_ = 0;
     lattice_row_changes_.clear();
     if (!measure) return;
-    const SunRows coarse = sun_rows(coarse_sun_buffer_.get(), inputs);
+    const SunRows coarse = sun_rows(coarse_sums_, inputs);
     const double brightest =
         fine.total.empty() ? 0.0 : *std::max_element(fine.total.begin(), fine.total.end());
     const double floor =
@@ -919,16 +925,54 @@ class OceanNode final : public gl::Node {
   // keeps needs no time of its own).
   double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
                            int cap, bool timed) {
-    return scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed);
+    return scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed, finer_sums_);
+  }
+
+  // A kept lattice's sums (ScatteredSunCache) into reference_sun_buffer_, read back and compared
+  // with what was sent: the cache's copy was checked when it was scattered, and the upload is
+  // the one step between it and the lighting pass. One that differs is sent again, up to
+  // kScatterRetries times (reuploads_, warnings()), then the render fails (gl::GlError).
+  void upload_checked(const std::vector<float>& sums) {
+    const auto bytes = static_cast<GLsizeiptr>(sums.size() * sizeof(float));
+    std::vector<float> back(sums.size());
+    for (int attempt = 0;; ++attempt) {
+      glNamedBufferSubData(reference_sun_buffer_.get(), 0, bytes, sums.data());
+      inject_test_fault(reference_sun_buffer_.get());
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      glGetNamedBufferSubData(reference_sun_buffer_.get(), 0, bytes, back.data());
+      if (std::memcmp(back.data(), sums.data(), static_cast<std::size_t>(bytes)) == 0) return;
+      ++reuploads_;
+      if (attempt >= kScatterRetries)
+        throw gl::GlError("the reference's scattered sun: the kept lattice sent " +
+                          std::to_string(attempt + 1) +
+                          " times reads back otherwise than it was sent");
+    }
+  }
+
+  // For tests (OceanNodeOptions::reference_sun_test_faults): while faults are left to inject,
+  // `buffer`'s sums overwritten as the H200's fault left them (scattered_sun_sums.hpp), with
+  // source text, then zeros (a scatter lost after its clear), in turn.
+  void inject_test_fault(GLuint buffer) {
+    if (injected_faults_ >= options_.reference_sun_test_faults) return;
+    const char text[] = "Tail(IN(Number) tion w (tangent ";
+    std::vector<float> sums(reference_sun_floats_, 0.0f);
+    if (injected_faults_ % 2 == 0)
+      for (std::size_t i = 0; i < sums.size(); ++i)
+        std::memcpy(&sums[i], text + 4 * (i % 8), sizeof(float));
+    ++injected_faults_;
+    glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
+                         sums.data());
   }
 
   // run_scatter, then its sums read back and checked (scattered_sun_sums.hpp): a lattice whose
   // buffer holds what no scatter writes is scattered again, up to kScatterRetries times
   // (rescatters_ counts them, scatter_fault_ says what the last held), and the render fails
-  // (gl::GlError) if the last is no better. With `timed`, the wall-clock time (ms) of the
-  // scatter that passed, waited for; else 0.
+  // (gl::GlError) if the last is no better. The sums that passed go to `sums`, the one copy the
+  // CPU uses (the lattice's convergence, the cache): a second read back would be unchecked. With
+  // `timed`, the wall-clock time (ms) of the scatter that passed, waited for; else 0.
   double scatter_checked(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                         int cap, ScatterRowCells* row_cells, bool timed) {
+                         int cap, ScatterRowCells* row_cells, bool timed,
+                         std::vector<float>& sums) {
     for (int attempt = 0;; ++attempt) {
       const auto start = std::chrono::steady_clock::now();
       run_scatter(programs, buffer, spacing, cap, row_cells);
@@ -938,20 +982,8 @@ class OceanNode final : public gl::Node {
               ? std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
                     .count()
               : 0.0;
-      std::vector<float> sums(reference_sun_floats_);
-      if (injected_faults_ < options_.reference_sun_test_faults) {
-        // The H200's fault (scattered_sun_sums.hpp), the buffer overwritten with source text,
-        // then zeros (a scatter lost after its clear), in turn.
-        const char text[] = "Tail(IN(Number) tion w (tangent ";
-        for (std::size_t i = 0; i < sums.size(); ++i)
-          if (injected_faults_ % 2 == 0)
-            std::memcpy(&sums[i], text + 4 * (i % 8), sizeof(float));
-          else
-            sums[i] = 0.0f;
-        ++injected_faults_;
-        glNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
-                             sums.data());
-      }
+      sums.assign(reference_sun_floats_, 0.0f);
+      inject_test_fault(buffer);
       glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
       glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
                               sums.data());
@@ -1072,17 +1104,17 @@ class OceanNode final : public gl::Node {
     }
   }
 
-  // Each row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in buffer, and the
+  // Each row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in `sums` (a
+  // lattice's, scatter_checked), and the
   // fraction of the row's sum(omega) from footprints within the cell cap; window rows, from the
   // bottom (the scatter's pixel rows).
   struct SunRows {
     std::vector<double> total, resolved;
     double omega = 0.0, hidden = 0.0;  // the image's visible and hidden solid angles (sr)
   };
-  static SunRows sun_rows(GLuint buffer, const gl::FrameInputs& inputs) {
-    std::vector<float> sums(4 * std::size_t(inputs.width) * std::size_t(inputs.height));
-    glGetNamedBufferSubData(buffer, 0, static_cast<GLsizeiptr>(sums.size() * sizeof(float)),
-                            sums.data());
+  static SunRows sun_rows(const std::vector<float>& sums, const gl::FrameInputs& inputs) {
+    if (sums.size() != 4 * std::size_t(inputs.width) * std::size_t(inputs.height))
+      throw std::logic_error("sun_rows: the sums are not the image's");
     SunRows rows{std::vector<double>(inputs.height, 0.0), std::vector<double>(inputs.height, 0.0)};
     for (int y = 0; y < inputs.height; ++y) {
       double omega = 0.0, unresolved = 0.0;
@@ -1219,7 +1251,11 @@ class OceanNode final : public gl::Node {
   // (scatter_checked; warnings()), and what the last such held; the faults injected so far
   // (OceanNodeOptions::reference_sun_test_faults).
   int rescatters_ = 0;
+  int reuploads_ = 0;  // a kept lattice's uploads sent again (upload_checked)
   std::string scatter_fault_;
+  // The sums of the finer lattice (in reference_sun_buffer_) and the coarser (coarse_sun_buffer_)
+  // as scatter_checked read and checked them: the CPU's only copies.
+  std::vector<float> finer_sums_, coarse_sums_;
   double scatter_sea_solid_angle_ = 0.0;  // sr, of the sea at rest in the image (the check's)
   int injected_faults_ = 0;
   double hidden_fraction_ =

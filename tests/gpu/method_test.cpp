@@ -995,6 +995,37 @@ TEST(OceanMethods, KeptSunLatticeIsTheLatticeScatteredAgain) {
                                 std::max(double(std::abs(again_image.rgba[i])), 1e-30));
   std::printf("kept against scattered again: largest relative pixel difference %.2e\n", worst);
   EXPECT_LT(worst, 1e-5);
+  // The kept sums, overwritten on the GPU after they are sent (the H200's fault, text, then
+  // zeros: ReferenceSampling::sun_test_faults), read back otherwise than they were sent: they
+  // are sent again, with a warning, and the image is the kept lattice's; three times in a row
+  // fail the render.
+  {
+    RendererOptions options = reference_sun_options(cells_per_wavelength, 2, cells);
+    options.terms = all;
+    options.reference.sun_max_cells_per_wavelength = 0.0;
+    options.reference.measure_lattice = false;
+    options.reference.sun_cache = cache;
+    options.reference.sun_test_faults = 2;
+    Renderer resent(*context, scene, options);
+    resent.render();
+    EXPECT_TRUE(resent.stats().sun_lattice_reused);
+    EXPECT_EQ(resent.stats().sun_lattice_rescatters, 0);
+    const std::vector<std::string> warnings = resent.stats().warnings;
+    ASSERT_EQ(warnings.size(), 1u);
+    std::printf("%s\n", warnings[0].c_str());
+    EXPECT_NE(warnings[0].find("kept lattice sent again 2 times"), std::string::npos)
+        << warnings[0];
+    EXPECT_EQ(resent.image().rgba, kept_image.rgba);
+    options.reference.sun_test_faults = 3;
+    try {
+      Renderer failing(*context, scene, options);
+      failing.render();
+      ADD_FAILURE() << "a kept lattice that read back wrong three times was drawn";
+    } catch (const std::exception& e) {
+      EXPECT_NE(std::string(e.what()).find("sent 3 times reads back otherwise"), std::string::npos)
+          << e.what();
+    }
+  }
   // The sun term's own image holds the same lattice's sun (it was kept from it).
   const RowChange sun_rows = worst_row_change(green_row_totals(sun_image),
                                               green_row_totals(render(scene, sun,

@@ -227,8 +227,8 @@ struct ReferenceSampling {
   // draws the lattice its sun term converged to. Null: every render scatters its own.
   std::shared_ptr<ocean::ScatteredSunCache> sun_cache;
   // For tests (OceanNodeOptions::reference_sun_test_faults): this many of the first lattices
-  // scattered are overwritten (text, then zeros, in turn) before they are checked, and
-  // scattered again.
+  // scattered or drawn from sun_cache are overwritten (text, then zeros, in turn) before they
+  // are checked, and scattered (or sent) again.
   int sun_test_faults = 0;
 };
 

@@ -72,10 +72,11 @@ struct OceanNodeOptions {
   // scattering it again where everything it depends on matches, and where this render's lattice
   // is stored (ocean/scattered_sun_cache.hpp). Null: every render scatters its own.
   std::shared_ptr<ScatteredSunCache> reference_sun_cache;
-  // For tests: the first this many lattices the node scatters have their sums overwritten, with
-  // text (as the H200 read back, ocean/src/scattered_sun_sums.hpp) and zeros in turn, before
-  // they are checked, so that they are scattered again (RenderStats::sun_lattice_rescatters);
-  // past two in a row the render fails.
+  // For tests: the first this many lattices the node scatters, or draws from
+  // reference_sun_cache, have their sums overwritten on the GPU, with text (as the H200 read
+  // back, ocean/src/scattered_sun_sums.hpp) and zeros in turn, before they are checked, so that
+  // they are scattered (or sent) again (RenderStats::sun_lattice_rescatters, warnings); past
+  // two in a row the render fails.
   int reference_sun_test_faults = 0;
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
