@@ -892,8 +892,8 @@ class OceanNode final : public gl::Node {
   }
 
   // The lattice's convergence (lattice_row_change_, its rows and per-row changes) from the
-  // finer lattice in reference_sun_buffer_ and, when measured, the coarser in coarse_sun_buffer_;
-  // hidden_fraction_ from the finer.
+  // finer lattice's sums (finer_sums_, of reference_sun_buffer_) and, when measured, the
+  // coarser's (coarse_sums_); hidden_fraction_ from the finer.
   void measure_lattice(const gl::FrameInputs& inputs, bool measure) {
     const SunRows fine = sun_rows(finer_sums_, inputs);
     hidden_fraction_ = fine.hidden / std::max(fine.hidden + fine.omega, 1e-300);
@@ -1105,9 +1105,8 @@ class OceanNode final : public gl::Node {
   }
 
   // Each row's total of the per-pixel sun factor sum(omega sun) / sum(omega) in `sums` (a
-  // lattice's, scatter_checked), and the
-  // fraction of the row's sum(omega) from footprints within the cell cap; window rows, from the
-  // bottom (the scatter's pixel rows).
+  // lattice's, as scatter_checked read them), and the fraction of the row's sum(omega) from
+  // footprints within the cell cap; window rows, from the bottom (the scatter's pixel rows).
   struct SunRows {
     std::vector<double> total, resolved;
     double omega = 0.0, hidden = 0.0;  // the image's visible and hidden solid angles (sr)
