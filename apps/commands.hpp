@@ -33,6 +33,7 @@ struct RenderArgs {
   int sun_refine = 4;                       // the reference's sun: subcells per side near glints
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)
   bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
+  int sun_segment = 0;  // the reference's sun: cells per scatter invocation (0: the renderer's)
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
   std::string sun_sums;  // the reference's scattered sun's per-pixel sums (.exr); empty: none
 };

@@ -78,6 +78,22 @@ constexpr int kScatterMaxRefine = 8;
 // invocation's loops, past which every loop silently stops: reference_sun_scatter.comp, "Why
 // segments"). The scatter's segments and the gathered sun's cells per stratum keep within it.
 constexpr double kShaderLoopBudget = 32768.0;
+// Cells per invocation of the scatter's cells' pass on a renderer without llvmpipe's loop limit
+// (OceanNodeOptions::reference_sun_segment): each invocation evaluates the 2 (segment + 1)
+// corners of its segment's two rows, 2.03 a cell at 64, where llvmpipe's budget allows 4 cells
+// (2.5 a cell) at 60 waves with 8 x 8 subcells and 2 (3.0) at 120 (stop 41). 64 keeps a
+// footprint's last segment's idle share small for the narrow footprints near the camera (a
+// few dozen cells a row) while the lattice still has millions of invocations to spread.
+constexpr int kScatterFreeSegment = 64;
+
+// Whether the renderer ends long shader loops silently (llvmpipe's gallivm: "Why segments" in
+// reference_sun_scatter.comp; softpipe shares Mesa's TGSI limits), so that the scatter's
+// invocations must stay within kShaderLoopBudget.
+bool renderer_limits_loops() {
+  const auto* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = renderer ? renderer : "";
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
 
 // A digest of a wave set (FNV-1a over the bits of every wave's parameters and the shortest
 // wavelength), for ScatteredSunCache's key: equal sets give equal digests; a collision between
@@ -392,6 +408,7 @@ class OceanNode final : public gl::Node {
             {"reference_sun.hidden_fraction", hidden_fraction_},
             {"reference_sun.margin_px", double(scatter_margin_)},
             {"reference_sun.refine", double(scatter_refine_)},
+            {"reference_sun.segment", double(scatter_segment_)},
             {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
             {"reference_sun.cells", double(lattice_cap_)},
             {"reference_sun.doublings", double(lattice_doublings_)},
@@ -771,11 +788,20 @@ class OceanNode final : public gl::Node {
     while (scatter_refine_ > 1 &&
            scatter_iterations(waves, feature, scatter_refine_, 1) > kShaderLoopBudget)
       --scatter_refine_;
-    scatter_segment_ = 1;
-    while (scatter_segment_ < kScatterMaxCells &&
-           scatter_iterations(waves, feature, scatter_refine_, 2 * scatter_segment_) <=
-               kShaderLoopBudget)
-      scatter_segment_ *= 2;
+    // (The refinement is held to the budget on every renderer, so that every renderer draws
+    // the same lattice; the segments change only the float rounding.)
+    const bool limited = renderer_limits_loops();
+    int most_segment = kScatterMaxCells;
+    if (limited) {
+      most_segment = 1;
+      while (most_segment < kScatterMaxCells &&
+             scatter_iterations(waves, feature, scatter_refine_, 2 * most_segment) <=
+                 kShaderLoopBudget)
+        most_segment *= 2;
+    }
+    scatter_segment_ = options_.reference_sun_segment > 0
+                           ? std::min(options_.reference_sun_segment, most_segment)
+                           : (limited ? most_segment : kScatterFreeSegment);
     uniform_i("reference_refine", scatter_refine_);
     uniform_i("reference_segment", scatter_segment_);
     // The margin: how far (pixels) the nearest sea in the image can move on screen, as the

@@ -204,8 +204,8 @@ struct Renderer::Impl {
             r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_max_cells >= 1 && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_batch_invocations >= 1 &&
-            r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch &&
-            r.sun_cells_per_wavelength >= 1.0 &&
+            r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch && r.sun_segment >= 0 &&
+            r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
              (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
@@ -218,7 +218,8 @@ struct Renderer::Impl {
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "] and sun_batch_invocations in [1, 2^31]");
+            "], sun_batch_invocations in [1, 2^31] and sun_segment in [0, " +
+            std::to_string(ocean::kReferenceMaxSunCells) + "]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(
@@ -240,6 +241,7 @@ struct Renderer::Impl {
            .reference_max_sun_cells = options.reference.sun_max_cells,
            .reference_lattice_tolerance = options.reference.row_tolerance,
            .reference_float_atomics = options.reference.sun_float_atomics,
+           .reference_sun_segment = options.reference.sun_segment,
            .reference_sun_batch = options.reference.sun_batch_invocations,
            .reference_sun_cache = options.reference.sun_cache,
            .reference_sun_test_faults = options.reference.sun_test_faults,
@@ -597,6 +599,7 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_hidden = m.node_measurement("reference_sun.hidden_fraction");
   stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
   stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
+  stats.sun_lattice_segment = static_cast<int>(m.node_measurement("reference_sun.segment"));
   stats.sun_lattice_row_changes = m.node_row_measurement("reference_sun.lattice_row_changes");
   stats.sun_lattice_cells_per_wavelength =
       m.node_measurement("reference_sun.cells_per_wavelength");

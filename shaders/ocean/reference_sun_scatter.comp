@@ -92,8 +92,12 @@
 // LP_MAX_TGSI_LOOP_ITERATIONS, one counter shared by every loop), silently: a corner then sums
 // a few of its waves, and a row of hundreds of cells, or a refined cell's subcells, came out
 // wrong (stop 22 measured 20-70 % of the far rows' sun lost, and garbage, at 5 x 5 to 8 x 8
-// subcells with 60 waves). The CPU (ocean_node.cpp, scatter_segment) sizes the segments so that
-// an invocation's worst case, every cell refined, stays within half that budget.
+// subcells with 60 waves). The CPU (ocean_node.cpp, scatter_iterations) sizes the segments so
+// that an invocation's worst case, every cell refined, stays within half that budget there: 2 to
+// 4 cells at 60 to 120 waves with 8 x 8 subcells. An invocation evaluates both rows of corners of
+// its segment, 2 (segment + 1) / segment a cell, so short segments evaluate most corners twice
+// over; a renderer without the limit (a GPU) takes segments of 64 cells (kScatterFreeSegment,
+// stop 41).
 layout(local_size_x = 64) in;
 
 // Two vec4 per wave, longest first (see ocean_geometry.frag).

@@ -73,6 +73,7 @@ struct RenderStats {
   int sun_lattice_margin = 0;
   double sun_lattice_hidden = 0.0;
   int sun_lattice_refine = 0;
+  int sun_lattice_segment = 0;  // the cells of a row per invocation of the scatter, as run
   // The lattice's change per image row (top first; NaN in the rows it does not count); empty
   // when the lattice was not measured.
   std::vector<double> sun_lattice_row_changes;
@@ -220,6 +221,11 @@ struct ReferenceSampling {
   // [1, 2^31]. The image does not depend on it (OceanMethods.ScatteredSunDoesNotDependOnItsBatches
   // draws many small batches); by default they are as large as the shader's 32-bit index allows.
   std::uint64_t sun_batch_invocations = ocean::kReferenceMaxSunBatch;
+  // Scattered: the cells of a row each invocation of the lattice's cells' pass takes, in [0,
+  // 16384]; 0 (the default): the most llvmpipe's loop limit allows there, 64 on other renderers
+  // (OceanNodeOptions::reference_sun_segment). The image does not depend on it but for float
+  // rounding (OceanMethods.ScatteredSunDoesNotDependOnItsSegments); its time does.
+  int sun_segment = 0;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,
   // when this render asks for that lattice without measuring it (ocean/scattered_sun_cache.hpp;

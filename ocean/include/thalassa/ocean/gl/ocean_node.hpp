@@ -65,6 +65,14 @@ struct OceanNodeOptions {
   // With the scatter: float atomic adds where the context has GL_NV_shader_atomic_float
   // (ReferenceSampling::sun_float_atomics), else compare-and-swap.
   bool reference_float_atomics = true;
+  // With the scatter: the cells of a row each invocation of its cells' pass takes (its
+  // segment; ReferenceSampling::sun_segment), [0, kReferenceMaxSunCells]. 0: the most that
+  // llvmpipe's loop limit allows where the renderer has it (reference_sun_scatter.comp, "Why
+  // segments"; 2 to 4 cells at 60 to 120 waves with 8 x 8 subcells), kScatterFreeSegment where
+  // it has none. Else as asked, held to that most on llvmpipe. The image does not depend on it
+  // but for float rounding; the time does, since an invocation evaluates both rows of corners
+  // of its segment's cells, 2 (segment + 1) / segment corners a cell.
+  int reference_sun_segment = 0;
   // With the scatter: the most invocations per batch of its cells' pass (ReferenceSampling::
   // sun_batch_invocations), [1, kReferenceMaxSunBatch].
   std::uint64_t reference_sun_batch = kReferenceMaxSunBatch;
