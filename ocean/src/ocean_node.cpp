@@ -43,6 +43,7 @@ class ScatteredSunCache {
     std::vector<float> sums;  // 4 per pixel, as reference_sun_scatter.comp leaves them
     int margin = 0;           // pixels (RenderStats::sun_lattice_margin)
     int refine = 0;           // subcells per side as run
+    int segment = 0;          // cells per invocation as run (RenderStats::sun_lattice_segment)
     double hidden_fraction = 0.0;
     double ms = 0.0;  // its own scatter's time, wall clock to its end
   };
@@ -725,6 +726,7 @@ class OceanNode final : public gl::Node {
       lattice_row_cells_ = {};
       scatter_margin_ = kept.margin;
       scatter_refine_ = kept.refine;
+      scatter_segment_ = kept.segment;
       hidden_fraction_ = kept.hidden_fraction;
       // What the image cost (the scatter that made the sums), as if this render had scattered
       // them: a reference's time stays its image's, whichever render spent it.
@@ -906,6 +908,7 @@ class OceanNode final : public gl::Node {
                                       .sums = finer_sums_,
                                       .margin = scatter_margin_,
                                       .refine = scatter_refine_,
+                                      .segment = scatter_segment_,
                                       .hidden_fraction = hidden_fraction_,
                                       .ms = finer_ms};
       cache->lattice = std::move(kept);

@@ -1023,6 +1023,7 @@ TEST(OceanMethods, KeptSunLatticeIsTheLatticeScatteredAgain) {
   EXPECT_EQ(kept.sun_lattice_rows, 0);
   EXPECT_GT(kept.sun_lattice_ms, 0.0);  // the scatter's time, which the image cost
   EXPECT_EQ(kept.sun_lattice_refine, again.sun_lattice_refine);
+  EXPECT_EQ(kept.sun_lattice_segment, again.sun_lattice_segment);
   EXPECT_EQ(kept.sun_lattice_margin, again.sun_lattice_margin);
   EXPECT_EQ(kept.sun_lattice_hidden, again.sun_lattice_hidden);
   EXPECT_EQ(kept.resolved_rows, again.resolved_rows);
