@@ -34,6 +34,7 @@ struct RenderArgs {
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)
   bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
   int sun_segment = 0;  // the reference's sun: cells per scatter invocation (0: the renderer's)
+  int sun_block_rows = 0;  // and rows of cells per scatter invocation (0: the renderer's)
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
   std::string sun_sums;  // the reference's scattered sun's per-pixel sums (.exr); empty: none
 };

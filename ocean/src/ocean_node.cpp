@@ -44,6 +44,7 @@ class ScatteredSunCache {
     int margin = 0;           // pixels (RenderStats::sun_lattice_margin)
     int refine = 0;           // subcells per side as run
     int segment = 0;          // cells per invocation as run (RenderStats::sun_lattice_segment)
+    int block_rows = 0;       // rows per invocation as run (RenderStats::sun_lattice_block_rows)
     double hidden_fraction = 0.0;
     double ms = 0.0;  // its own scatter's time, wall clock to its end
   };
@@ -80,12 +81,22 @@ constexpr int kScatterMaxRefine = 8;
 // segments"). The scatter's segments and the gathered sun's cells per stratum keep within it.
 constexpr double kShaderLoopBudget = 32768.0;
 // Cells per invocation of the scatter's cells' pass on a renderer without llvmpipe's loop limit
-// (OceanNodeOptions::reference_sun_segment): each invocation evaluates the 2 (segment + 1)
-// corners of its segment's two rows, 2.03 a cell at 64, where llvmpipe's budget allows 4 cells
+// (OceanNodeOptions::reference_sun_segment): taking one row, an invocation evaluates the
+// 2 (segment + 1) corners of its two rows of corners, 2.03 a cell at 64, where llvmpipe's
+// budget allows 4 cells
 // (2.5 a cell) at 60 waves with 8 x 8 subcells and 2 (3.0) at 120 (stop 41). 64 keeps a
 // footprint's last segment's idle share small for the narrow footprints near the camera (a
 // few dozen cells a row) while the lattice still has millions of invocations to spread.
 constexpr int kScatterFreeSegment = 64;
+// Rows of cells per invocation of the cells' pass on a renderer without the loop limit
+// (OceanNodeOptions::reference_sun_block_rows): a column of block_rows + 1 corners serves
+// block_rows cells, so that with kScatterFreeSegment an invocation evaluates 5 x 65 corners for
+// 4 x 64 cells, 1.27 a cell against 2.03 a row at a time (stop 41). More rows would save less
+// (1.13 at 8) for twice the corners an invocation holds.
+constexpr int kScatterFreeBlockRows = 4;
+// The most rows of cells an invocation may take (reference_sun_scatter.comp's REFERENCE_ROWS,
+// the length of its columns of corners).
+constexpr int kScatterMaxBlockRows = kReferenceMaxSunBlockRows;
 
 // Whether the renderer ends long shader loops silently (llvmpipe's gallivm: "Why segments" in
 // reference_sun_scatter.comp; softpipe shares Mesa's TGSI limits), so that the scatter's
@@ -119,19 +130,21 @@ std::uint64_t wave_digest(const WaveSet& set) {
 }
 
 // The scatter's loop iterations per invocation (an upper estimate of the shader's loops: each
-// corner's wave loop and the features' loops, the segment's fixed work, and per cell its two new
-// corners, its neighbour test and its deposits, and when refined its subcells' corners and
-// loops), for `waves` waves, `feature` iterations per point of the wakes' loops, `refine`
-// subcells per side and `cells` cells per invocation.
-double scatter_iterations(int waves, int feature, int refine, int cells) {
+// corner's wave loop and the features' loops, the segment's fixed work and first column of
+// corners, and per column of cells its new corners and the loops over its rows, and per cell its
+// neighbour test and its deposits, and when refined its subcells' corners and loops), for
+// `waves` waves, `feature` iterations per point of the wakes' loops, `refine` subcells per side,
+// `columns` cells of a row per invocation (its segment) and `rows` rows of cells (its block).
+double scatter_iterations(int waves, int feature, int refine, int columns, int rows = 1) {
   const double corner = waves + 1.0 + feature;
-  const double fixed = waves + 2.0 * corner + 32.0;
-  double cell = 2.0 * corner + 32.0;
+  const double fixed = waves + (rows + 1.0) * (corner + 1.0) + 32.0;
+  double cell = 32.0;
   if (refine > 1) {
     const double side = refine + 1.0;
     cell += (side * side - 4.0) * corner + 2.0 * side * side + 12.0 * refine * refine;
   }
-  return fixed + cells * cell;
+  const double column = (rows + 1.0) * (corner + 2.0) + rows * (cell + 1.0);
+  return fixed + columns * column;
 }
 
 // The solid angle (sr) of the sea at rest in the camera's image: each pixel's solid angle (its
@@ -410,6 +423,7 @@ class OceanNode final : public gl::Node {
             {"reference_sun.margin_px", double(scatter_margin_)},
             {"reference_sun.refine", double(scatter_refine_)},
             {"reference_sun.segment", double(scatter_segment_)},
+            {"reference_sun.block_rows", double(scatter_block_rows_)},
             {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
             {"reference_sun.cells", double(lattice_cap_)},
             {"reference_sun.doublings", double(lattice_doublings_)},
@@ -727,6 +741,7 @@ class OceanNode final : public gl::Node {
       scatter_margin_ = kept.margin;
       scatter_refine_ = kept.refine;
       scatter_segment_ = kept.segment;
+      scatter_block_rows_ = kept.block_rows;
       hidden_fraction_ = kept.hidden_fraction;
       // What the image cost (the scatter that made the sums), as if this render had scattered
       // them: a reference's time stays its image's, whichever render spent it.
@@ -736,11 +751,46 @@ class OceanNode final : public gl::Node {
       has_scatter_key_ = true;
       return;
     }
+    // The refinement, the block rows and the segments within the loop budget on a renderer
+    // that ends long loops (llvmpipe): the most subcells per side whose single refined cell fits
+    // it (1000 waves at 8 x 8 would not), held there on every renderer so that every renderer
+    // draws the same lattice; then the rows and cells per invocation, which change only the
+    // float rounding: on llvmpipe one row (as asked, within the budget) and the most cells whose
+    // worst case, every cell refined, fits; elsewhere kScatterFreeBlockRows x kScatterFreeSegment
+    // (or as asked).
+    const int waves = static_cast<int>(waves_.waves.size());
+    const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
+    scatter_refine_ = std::clamp(options_.reference_sun_refine, 1, kScatterMaxRefine);
+    while (scatter_refine_ > 1 &&
+           scatter_iterations(waves, feature, scatter_refine_, 1) > kShaderLoopBudget)
+      --scatter_refine_;
+    const bool limited = renderer_limits_loops();
+    scatter_block_rows_ =
+        std::clamp(options_.reference_sun_block_rows > 0 ? options_.reference_sun_block_rows
+                   : limited                             ? 1
+                                                         : kScatterFreeBlockRows,
+                   1, kScatterMaxBlockRows);
+    while (limited && scatter_block_rows_ > 1 &&
+           scatter_iterations(waves, feature, scatter_refine_, 1, scatter_block_rows_) >
+               kShaderLoopBudget)
+      --scatter_block_rows_;
+    int most_segment = kScatterMaxCells;
+    if (limited) {
+      most_segment = 1;
+      while (most_segment < kScatterMaxCells &&
+             scatter_iterations(waves, feature, scatter_refine_, 2 * most_segment,
+                                scatter_block_rows_) <= kShaderLoopBudget)
+        most_segment *= 2;
+    }
+    scatter_segment_ = options_.reference_sun_segment > 0
+                           ? std::min(options_.reference_sun_segment, most_segment)
+                           : (limited ? most_segment : kScatterFreeSegment);
     gl::Defines defines;
     if (local_features_) local_features_->add_defines(defines);
     if (float_atomics_) defines["REFERENCE_FLOAT_ATOMICS"] = "1";
     gl::Defines footprint_defines = defines;
     footprint_defines["REFERENCE_FOOTPRINT_PASS"] = "1";
+    defines["REFERENCE_ROWS"] = std::to_string(scatter_block_rows_);
     // The same source twice: the footprints' pass, then the cells'; both take every uniform.
     const std::array<GLuint, 2> programs = {
         context.shaders.program(
@@ -781,29 +831,6 @@ class OceanNode final : public gl::Node {
       curvature += wave.amplitude * std::pow(wave.wavenumber, 3) / std::pow(1.0 - steepness, 3);
     }
     uniform_f("slope_curvature", curvature);
-    // The refinement and the segments within the loop budget: the most subcells per side whose
-    // single refined cell fits it (1000 waves at 8 x 8 would not), then the most cells per
-    // invocation whose worst case, every cell refined, does.
-    const int waves = static_cast<int>(waves_.waves.size());
-    const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
-    scatter_refine_ = std::clamp(options_.reference_sun_refine, 1, kScatterMaxRefine);
-    while (scatter_refine_ > 1 &&
-           scatter_iterations(waves, feature, scatter_refine_, 1) > kShaderLoopBudget)
-      --scatter_refine_;
-    // (The refinement is held to the budget on every renderer, so that every renderer draws
-    // the same lattice; the segments change only the float rounding.)
-    const bool limited = renderer_limits_loops();
-    int most_segment = kScatterMaxCells;
-    if (limited) {
-      most_segment = 1;
-      while (most_segment < kScatterMaxCells &&
-             scatter_iterations(waves, feature, scatter_refine_, 2 * most_segment) <=
-                 kShaderLoopBudget)
-        most_segment *= 2;
-    }
-    scatter_segment_ = options_.reference_sun_segment > 0
-                           ? std::min(options_.reference_sun_segment, most_segment)
-                           : (limited ? most_segment : kScatterFreeSegment);
     uniform_i("reference_refine", scatter_refine_);
     uniform_i("reference_segment", scatter_segment_);
     // The margin: how far (pixels) the nearest sea in the image can move on screen, as the
@@ -909,6 +936,7 @@ class OceanNode final : public gl::Node {
                                       .margin = scatter_margin_,
                                       .refine = scatter_refine_,
                                       .segment = scatter_segment_,
+                                      .block_rows = scatter_block_rows_,
                                       .hidden_fraction = hidden_fraction_,
                                       .ms = finer_ms};
       cache->lattice = std::move(kept);
@@ -1066,11 +1094,11 @@ class OceanNode final : public gl::Node {
     // Footprints' pass: one invocation per footprint.
     glUseProgram(programs[0]);
     dispatch(programs[0], footprint_count_);
-    // Cells' pass: ky x ceil(kx / segment) invocations per footprint, numbered without gaps
-    // (reference_sun_scatter.comp, pass 2), in batches of whole footprints whose invocations a
-    // 32-bit index counts (the whole lattice's passed 2^32 on the 20 m/s sea at 4 m with 8 x 8
-    // subcells: 6.1e9 slots as they were laid out until stop 33). A footprint's cells are at
-    // most cap^2 <= 2048^2, so one always fits.
+    // Cells' pass: ceil(ky / block rows) x ceil(kx / segment) invocations per footprint,
+    // numbered without gaps (reference_sun_scatter.comp, pass 2), in batches of whole
+    // footprints whose invocations a 32-bit index counts (the whole lattice's passed 2^32 on the 20
+    // m/s sea at 4 m with 8 x 8 subcells: 6.1e9 slots as they were laid out until stop 33). A
+    // footprint's cells are at most cap^2 <= 2048^2, so one always fits.
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
     std::vector<float> footprints(12 * footprint_count_);
     glGetNamedBufferSubData(footprint_buffer_.get(), 0,
@@ -1092,7 +1120,9 @@ class OceanNode final : public gl::Node {
     for (std::size_t f = 0; f < footprint_count_; ++f) {
       const auto kx = static_cast<std::uint64_t>(std::max(footprints[12 * f + 8], 0.0f));
       const auto ky = static_cast<std::uint64_t>(std::max(footprints[12 * f + 9], 0.0f));
-      const std::uint64_t invocations = ky * ((kx + segment - 1) / segment);
+      const std::uint64_t block_rows = static_cast<std::uint64_t>(scatter_block_rows_);
+      const std::uint64_t invocations =
+          ((ky + block_rows - 1) / block_rows) * ((kx + segment - 1) / segment);
       const int x = static_cast<int>(f % columns) - scatter_margin_;
       const int y = static_cast<int>(f / columns) - scatter_margin_;  // window row, from the bottom
       if (row_cells && x >= 0 && x < scatter_width_ && y >= 0 && y < scatter_height_) {
@@ -1253,6 +1283,7 @@ class OceanNode final : public gl::Node {
   // (within kShaderLoopBudget).
   int scatter_refine_ = 1;
   int scatter_segment_ = 1;
+  int scatter_block_rows_ = 1;
   gl::Buffer footprint_buffer_;  // 12 floats per footprint, between the scatter's passes
   std::size_t footprint_count_ = 0;
   // Per footprint, its first invocation of pass 2, counted from its batch's first (run_scatter).

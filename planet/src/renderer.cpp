@@ -205,7 +205,9 @@ struct Renderer::Impl {
             r.sun_max_cells >= 1 && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
             r.sun_batch_invocations >= 1 &&
             r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch && r.sun_segment >= 0 &&
-            r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_cells_per_wavelength >= 1.0 &&
+            r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_block_rows >= 0 &&
+            r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows &&
+            r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
              (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
@@ -218,8 +220,9 @@ struct Renderer::Impl {
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "], sun_batch_invocations in [1, 2^31] and sun_segment in [0, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "]");
+            "], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
+            std::to_string(ocean::kReferenceMaxSunCells) + "] and sun_block_rows in [0, " +
+            std::to_string(ocean::kReferenceMaxSunBlockRows) + "]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(
@@ -242,6 +245,7 @@ struct Renderer::Impl {
            .reference_lattice_tolerance = options.reference.row_tolerance,
            .reference_float_atomics = options.reference.sun_float_atomics,
            .reference_sun_segment = options.reference.sun_segment,
+           .reference_sun_block_rows = options.reference.sun_block_rows,
            .reference_sun_batch = options.reference.sun_batch_invocations,
            .reference_sun_cache = options.reference.sun_cache,
            .reference_sun_test_faults = options.reference.sun_test_faults,
@@ -600,6 +604,7 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_margin = static_cast<int>(m.node_measurement("reference_sun.margin_px"));
   stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
   stats.sun_lattice_segment = static_cast<int>(m.node_measurement("reference_sun.segment"));
+  stats.sun_lattice_block_rows = static_cast<int>(m.node_measurement("reference_sun.block_rows"));
   stats.sun_lattice_row_changes = m.node_row_measurement("reference_sun.lattice_row_changes");
   stats.sun_lattice_cells_per_wavelength =
       m.node_measurement("reference_sun.cells_per_wavelength");

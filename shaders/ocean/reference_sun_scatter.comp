@@ -73,10 +73,11 @@
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_cell.glsl"
 
-// One invocation per segment of reference_segment cells of a row of cells of one footprint,
-// numbered without gaps (stop 34): footprint f's ky x ceil(kx / reference_segment) invocations
-// start at footprint_starts[f], counted from its batch's first, and within it consecutive
-// invocations take consecutive rows of one segment. The CPU (ocean_node.cpp, run_scatter) reads
+// One invocation per segment of reference_segment cells of a block of REFERENCE_ROWS rows of
+// cells of one footprint (a row until stop 41), numbered without gaps (stop 34): footprint f's
+// ceil(ky / REFERENCE_ROWS) x ceil(kx / reference_segment) invocations start at
+// footprint_starts[f], counted from its batch's first, and within it consecutive invocations
+// take consecutive blocks of one segment. The CPU (ocean_node.cpp, run_scatter) reads
 // the footprints' kx and ky back after pass 1 and cuts the lattice into batches of whole
 // footprints [first_footprint, footprint_end) whose invocations a 32-bit index counts; a
 // dispatch is whole work groups of 64, and those past its count (id >= invocation_end) do
@@ -99,6 +100,13 @@
 // over; a renderer without the limit (a GPU) takes segments of 64 cells (kScatterFreeSegment,
 // stop 41).
 layout(local_size_x = 64) in;
+
+// Rows of cells per invocation of pass 2 (the CPU's define: ocean_node.cpp, scatter_rows): an
+// invocation evaluates (REFERENCE_ROWS + 1) (segment + 1) corners for REFERENCE_ROWS x segment
+// cells. 1 on llvmpipe, whose loop budget the rows multiply.
+#ifndef REFERENCE_ROWS
+#define REFERENCE_ROWS 1
+#endif
 
 // Two vec4 per wave, longest first (see ocean_geometry.frag).
 layout(std430, binding = 1) readonly buffer Waves { vec4 waves[]; };
@@ -572,11 +580,13 @@ void main() {
   const vec4 cells = footprints[3u * footprint + 2u];
   const int kx = int(cells.x), ky = int(cells.y);
   if (ky < 1) return;
-  // Consecutive invocations take consecutive rows of one segment: the SIMD lanes of a work group
-  // (llvmpipe runs 8 in lockstep) are then active or idle together.
+  // Consecutive invocations take consecutive blocks of REFERENCE_ROWS rows of one segment: the
+  // SIMD lanes of a work group (llvmpipe runs 8 in lockstep) are then active or idle together.
   const uint local_id = id - footprint_starts[footprint];
-  const int j = int(local_id % uint(ky));
-  const int first = int(local_id / uint(ky)) * segment_cells;
+  const int blocks = (ky + REFERENCE_ROWS - 1) / REFERENCE_ROWS;
+  const int j = int(local_id % uint(blocks)) * REFERENCE_ROWS;
+  const int rows = min(REFERENCE_ROWS, ky - j);
+  const int first = int(local_id / uint(blocks)) * segment_cells;
   if (first >= kx) return;
   const int last = min(kx, first + segment_cells);
   const float unresolved = cells.z;
@@ -584,48 +594,60 @@ void main() {
   const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
   // The footprint's corners from its q00 (m, nadir frame's axes).
   const vec2 q10 = q0.zw - q0.xy, q01 = q1.xy - q0.xy, q11 = q1.zw - q0.xy;
-  // The rows j and j + 1 of corners, cells first to last - 1 of them, left to right, two corners
-  // at a time. Each is given from the segment's first corner of row j (footprint_origin: see
-  // ReferenceCorner), by differences that stay as small as the segment: a corner's offset from
-  // the footprint's q00 reaches the footprint's length, 64,000 cells one row below the horizon on
-  // the suite's views, where a float's rounding is 1.5e-3 rad of the shortest wave's argument
-  // (2 pi 64,000 / 16 x 6e-8), 3 % of the 0.049 rad across a subcell at 16 cells per wavelength
-  // and 8 x 8 subcells; the arguments' differences across a subcell, from which its
-  // parallelogram is made, would carry that rounding (stop 31's noise; 0.1 % at the 2,048 cells
-  // a side that were the most until stop 34).
-  // Row v's corner at u is a(v) + u (b(v) - a(v)), a(v) = v q01, b(v) = q10 + v (q11 - q10).
+  // The rows j to j + rows of corners, cells first to last - 1 of them, left to right, a column
+  // of rows + 1 corners at a time. Each is given from the segment's first corner of row j
+  // (footprint_origin: see ReferenceCorner), by differences that stay as small as the block: a
+  // corner's offset from the footprint's q00 reaches the footprint's length, 64,000 cells one
+  // row below the horizon on the suite's views, where a float's rounding is 1.5e-3 rad of the
+  // shortest wave's argument (2 pi 64,000 / 16 x 6e-8), 3 % of the 0.049 rad across a subcell at
+  // 16 cells per wavelength and 8 x 8 subcells; the arguments' differences across a subcell,
+  // from which its parallelogram is made, would carry that rounding (stop 31's noise; 0.1 % at
+  // the 2,048 cells a side that were the most until stop 34).
+  // Row v's corner at u is a(v) + u (b(v) - a(v)), a(v) = v q01, b(v) = q10 + v (q11 - q10). From
+  // row j's corner at u0, row j + r's at u0 + du is r (q01 + u0 twist) / ky + du edge_r, with
+  // twist = q11 - q10 - q01 and edge_r = edge_0 + r twist / ky its edge along u (for r = 1 the
+  // same float operations as the one row of corners pairs before stop 41).
   const float v0 = float(j) / float(ky);
   const vec2 a0 = v0 * q01, b0 = mix(q10, q11, v0);
-  const vec2 edge0 = b0 - a0;                              // row j's, along u
-  const vec2 edge1 = edge0 + (q11 - q10 - q01) / float(ky);  // row j + 1's
+  const vec2 edge0 = b0 - a0;  // row j's, along u
+  const vec2 twist = q11 - q10 - q01;
   const float u0 = float(first) / float(kx);
   const vec2 segment_origin = a0 + u0 * edge0;
   footprint_origin = q0.xy + segment_origin;
-  // Row j + 1's corner at u0, from row j's: (a1 - a0) + u0 (edge1 - edge0).
-  const vec2 first_high = (q01 + u0 * (q11 - q10 - q01)) / float(ky);
-  Corner low = ReferenceCorner(vec2(0.0));
-  Corner high = ReferenceCorner(first_high);
-  vec3 low_rest = vec3(0.0, 0.0, ReferenceRestHeight(frame_sea_curvature, footprint_origin));
-  vec3 high_rest =
-      vec3(first_high, ReferenceRestHeight(frame_sea_curvature, footprint_origin + first_high));
+  const vec2 step = q01 + u0 * twist;
+  // The column of corners (and their rest points, m, from footprint_origin) at the left of the
+  // cells being scattered, then at their right.
+  Corner left[REFERENCE_ROWS + 1], right[REFERENCE_ROWS + 1];
+  vec3 left_rest[REFERENCE_ROWS + 1], right_rest[REFERENCE_ROWS + 1];
+  vec2 row_start[REFERENCE_ROWS + 1], row_edge[REFERENCE_ROWS + 1];
+  for (int r = 0; r <= REFERENCE_ROWS; ++r) {
+    if (r > rows) break;
+    row_start[r] = float(r) * step / float(ky);
+    row_edge[r] = edge0 + float(r) * twist / float(ky);
+    left[r] = ReferenceCorner(row_start[r]);
+    left_rest[r] = vec3(row_start[r],
+                        ReferenceRestHeight(frame_sea_curvature, footprint_origin + row_start[r]));
+  }
   for (int i = first + 1; i <= last; ++i) {
     const float du = float(i - first) / float(kx);
-    const vec2 low_xy = du * edge0, high_xy = first_high + du * edge1;
-    const Corner next_low = ReferenceCorner(low_xy);
-    const Corner next_high = ReferenceCorner(high_xy);
-    const vec3 next_low_rest =
-        vec3(low_xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + low_xy));
-    const vec3 next_high_rest =
-        vec3(high_xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + high_xy));
-    // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
-    const vec3 e_u = 0.5 * ((next_low_rest - low_rest) + (next_high_rest - high_rest));
-    const vec3 e_v = 0.5 * ((high_rest - low_rest) + (next_high_rest - next_low_rest));
-    ScatterCell(low, next_low, high, next_high, length(cross(e_u, e_v)),
-                max(length(e_u), length(e_v)), unresolved, unresolved_height);
-    low = next_low;
-    high = next_high;
-    low_rest = next_low_rest;
-    high_rest = next_high_rest;
+    for (int r = 0; r <= REFERENCE_ROWS; ++r) {
+      if (r > rows) break;
+      const vec2 xy = row_start[r] + du * row_edge[r];
+      right[r] = ReferenceCorner(xy);
+      right_rest[r] = vec3(xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + xy));
+    }
+    for (int r = 0; r < REFERENCE_ROWS; ++r) {
+      if (r >= rows) break;
+      // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
+      const vec3 e_u = 0.5 * ((right_rest[r] - left_rest[r]) + (right_rest[r + 1] - left_rest[r + 1]));
+      const vec3 e_v = 0.5 * ((left_rest[r + 1] - left_rest[r]) + (right_rest[r + 1] - right_rest[r]));
+      ScatterCell(left[r], right[r], left[r + 1], right[r + 1], length(cross(e_u, e_v)),
+                  max(length(e_u), length(e_v)), unresolved, unresolved_height);
+    }
+    for (int r = 0; r <= REFERENCE_ROWS; ++r) {
+      left[r] = right[r];
+      left_rest[r] = right_rest[r];
+    }
   }
   Flush(0);
   Flush(1);

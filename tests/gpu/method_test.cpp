@@ -589,20 +589,24 @@ struct SunRows {
   bool float_atomics = false;  // RenderStats::sun_lattice_float_atomics
   std::vector<std::array<int, 2>> row_cells;  // RenderStats::sun_lattice_row_cells
   int segment = 0;                            // RenderStats::sun_lattice_segment
+  int block_rows = 0;                         // RenderStats::sun_lattice_block_rows
 };
 SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
                            int refine, int cap, bool float_atomics = true,
-                           std::uint64_t batch = ocean::kReferenceMaxSunBatch, int segment = 0) {
+                           std::uint64_t batch = ocean::kReferenceMaxSunBatch, int segment = 0,
+                           int block_rows = 0) {
   RendererOptions options = reference_sun_options(cells_per_wavelength, refine, cap);
   options.reference.measure_lattice = false;
   options.reference.sun_float_atomics = float_atomics;
   options.reference.sun_batch_invocations = batch;
   options.reference.sun_segment = segment;
+  options.reference.sun_block_rows = block_rows;
   Renderer renderer(context, scene, options);
   renderer.render();
   return {green_row_totals(renderer.image()),     renderer.stats().resolved_rows,
           renderer.stats().sun_lattice_refine,    renderer.stats().sun_lattice_float_atomics,
-          renderer.stats().sun_lattice_row_cells, renderer.stats().sun_lattice_segment};
+          renderer.stats().sun_lattice_row_cells, renderer.stats().sun_lattice_segment,
+          renderer.stats().sun_lattice_block_rows};
 }
 
 // The scatter tests' view: validation_scene at 100 m, 24 x 16 pixels, waves from 2 m (so that
@@ -687,38 +691,49 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
   }
 }
 
-// Each invocation of the scatter's cells' pass takes a segment of a row of a footprint's cells
-// (ReferenceSampling::sun_segment): as many as llvmpipe's loop limit allows there, 64 on a GPU
-// (stop 41: fewer corners evaluated twice). Segments of 1, of a count that leaves most
-// footprints' last segment part-filled (5, 3) and of the most draw the same image to float
-// rounding, with and without the refined cells; a segment asked past llvmpipe's budget is held
-// to it there (past it the shader's loops would end silently). The rounding is the waves'
-// arguments', not only the atomics' order (3e-7 a row: the batches' test above): each segment's
-// corners are given from its own first corner (footprint_origin, stop 31), so another cut rounds
-// them otherwise; measured 1.4-2.8e-4 a row on llvmpipe, against the 1 % the lattice converges
-// to.
+// Each invocation of the scatter's cells' pass takes a segment of a block of rows of a
+// footprint's cells (ReferenceSampling::sun_segment, sun_block_rows): one row of as many cells as
+// llvmpipe's loop limit allows there, 4 rows of 64 on a GPU (stop 41: fewer corners evaluated
+// twice). Segments of 1, of a count that leaves most footprints' last segment part-filled (5, 3)
+// and of the most, one row or blocks of 4 and of 3 (most footprints' last block part-filled),
+// draw the same image to float rounding, with and without the refined cells; a segment asked
+// past llvmpipe's budget is held to it there (past it the shader's loops would end silently).
+// The rounding is the waves' arguments', not only the atomics' order (3e-7 a row: the batches'
+// test above): each segment's corners are given from its own first corner (footprint_origin,
+// stop 31), so another cut rounds them otherwise; measured 1.4-2.8e-4 a row on llvmpipe,
+// against the 1 % the lattice converges to.
 TEST(OceanMethods, ScatteredSunDoesNotDependOnItsSegments) {
   auto context = test::make_test_context();
   const Scene scene = small_sun_scene();
   const bool limited = query_gl_info().renderer.find("llvmpipe") != std::string::npos;
   for (const int refine : {4, 1}) {
     const SunRows own = reference_sun_rows(*context, scene, 4, refine, 1024);
-    std::printf("%d x %d subcells: %d cells a segment by default\n", refine, refine, own.segment);
-    if (limited)
+    std::printf("%d x %d subcells: %d rows of %d cells an invocation by default\n", refine, refine,
+                own.block_rows, own.segment);
+    if (limited) {
       EXPECT_GE(own.segment, refine > 1 ? 8 : 64) << "the budget's most (60 waves)";
-    else
+      EXPECT_EQ(own.block_rows, 1);
+    } else {
       EXPECT_EQ(own.segment, 64);
-    for (const int segment : {1, refine > 1 ? 5 : 3, 64}) {
+      EXPECT_EQ(own.block_rows, 4);
+    }
+    const int part = refine > 1 ? 5 : 3;
+    for (const auto& [segment, block_rows] :
+         std::vector<std::pair<int, int>>{{1, 1}, {part, 1}, {64, 1}, {64, 4}, {part, 3}}) {
       const SunRows cut = reference_sun_rows(*context, scene, 4, refine, 1024, true,
-                                             ocean::kReferenceMaxSunBatch, segment);
-      EXPECT_EQ(cut.segment, limited ? std::min(segment, own.segment) : segment) << segment;
+                                             ocean::kReferenceMaxSunBatch, segment, block_rows);
+      EXPECT_EQ(cut.block_rows, block_rows) << "(these fit llvmpipe's budget)";
+      if (!limited) {
+        EXPECT_EQ(cut.segment, segment);
+      }
+      EXPECT_LE(cut.segment, segment);
       EXPECT_EQ(cut.resolved, own.resolved);
       EXPECT_EQ(cut.row_cells, own.row_cells);
       const RowChange change = worst_row_change(own.totals, cut.totals);
-      std::printf("  segments of %d cells (as run %d): %d lit rows, worst difference %.2e\n",
-                  segment, cut.segment, change.rows, change.worst);
-      EXPECT_GE(change.rows, 8) << segment;
-      EXPECT_LT(change.worst, 1e-3) << segment;
+      std::printf("  %d rows of %d cells (as run %d x %d): %d lit rows, worst difference %.2e\n",
+                  block_rows, segment, cut.block_rows, cut.segment, change.rows, change.worst);
+      EXPECT_GE(change.rows, 8) << segment << " x " << block_rows;
+      EXPECT_LT(change.worst, 1e-3) << segment << " x " << block_rows;
     }
   }
 }
@@ -1024,6 +1039,7 @@ TEST(OceanMethods, KeptSunLatticeIsTheLatticeScatteredAgain) {
   EXPECT_GT(kept.sun_lattice_ms, 0.0);  // the scatter's time, which the image cost
   EXPECT_EQ(kept.sun_lattice_refine, again.sun_lattice_refine);
   EXPECT_EQ(kept.sun_lattice_segment, again.sun_lattice_segment);
+  EXPECT_EQ(kept.sun_lattice_block_rows, again.sun_lattice_block_rows);
   EXPECT_EQ(kept.sun_lattice_margin, again.sun_lattice_margin);
   EXPECT_EQ(kept.sun_lattice_hidden, again.sun_lattice_hidden);
   EXPECT_EQ(kept.resolved_rows, again.resolved_rows);

@@ -47,6 +47,9 @@ inline constexpr int kReferenceHeldSunCells = 2048;
 // 32 bits (reference_sun_scatter.comp). A footprint's are at most kReferenceMaxSunCells^2.
 inline constexpr std::uint64_t kReferenceMaxSunBatch = std::uint64_t(1) << 31;
 static_assert(std::uint64_t(kReferenceMaxSunCells) * kReferenceMaxSunCells <= kReferenceMaxSunBatch);
+// The most rows of cells one invocation of the scattered sun's cells' pass may take (its column
+// of corners is one longer: reference_sun_scatter.comp, REFERENCE_ROWS).
+inline constexpr int kReferenceMaxSunBlockRows = 8;
 // The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
 // at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
 inline constexpr int kReferenceMaxPixelSamples = 16384;

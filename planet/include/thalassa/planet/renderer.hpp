@@ -74,6 +74,7 @@ struct RenderStats {
   double sun_lattice_hidden = 0.0;
   int sun_lattice_refine = 0;
   int sun_lattice_segment = 0;  // the cells of a row per invocation of the scatter, as run
+  int sun_lattice_block_rows = 0;  // and its rows of cells per invocation
   // The lattice's change per image row (top first; NaN in the rows it does not count); empty
   // when the lattice was not measured.
   std::vector<double> sun_lattice_row_changes;
@@ -226,6 +227,11 @@ struct ReferenceSampling {
   // (OceanNodeOptions::reference_sun_segment). The image does not depend on it but for float
   // rounding (OceanMethods.ScatteredSunDoesNotDependOnItsSegments); its time does.
   int sun_segment = 0;
+  // Scattered: the rows of cells each invocation of the lattice's cells' pass takes, in [0, 8];
+  // 0 (the default): 1 on llvmpipe, 4 on other renderers (OceanNodeOptions::
+  // reference_sun_block_rows). Like sun_segment, the image does not depend on it but for float
+  // rounding; its time does.
+  int sun_block_rows = 0;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,
   // when this render asks for that lattice without measuring it (ocean/scattered_sun_cache.hpp;

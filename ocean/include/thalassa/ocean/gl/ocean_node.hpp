@@ -70,9 +70,15 @@ struct OceanNodeOptions {
   // llvmpipe's loop limit allows where the renderer has it (reference_sun_scatter.comp, "Why
   // segments"; 2 to 4 cells at 60 to 120 waves with 8 x 8 subcells), kScatterFreeSegment where
   // it has none. Else as asked, held to that most on llvmpipe. The image does not depend on it
-  // but for float rounding; the time does, since an invocation evaluates both rows of corners
-  // of its segment's cells, 2 (segment + 1) / segment corners a cell.
+  // but for float rounding; the time does, since an invocation evaluates every corner of its
+  // cells, (block rows + 1)(segment + 1) for block rows x segment cells.
   int reference_sun_segment = 0;
+  // With the scatter: the rows of cells each invocation of its cells' pass takes (a column of
+  // block_rows + 1 corners serves block_rows cells), [0, kReferenceMaxSunBlockRows]. 0: 1 where
+  // the renderer has llvmpipe's loop limit, kScatterFreeBlockRows (4) where it has none. Else as
+  // asked, held on llvmpipe to what one column's worst case fits. Like the segment, it changes
+  // only the float rounding and the time.
+  int reference_sun_block_rows = 0;
   // With the scatter: the most invocations per batch of its cells' pass (ReferenceSampling::
   // sun_batch_invocations), [1, kReferenceMaxSunBatch].
   std::uint64_t reference_sun_batch = kReferenceMaxSunBatch;
