@@ -238,6 +238,7 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   EXPECT_DOUBLE_EQ(largest, scattered["sun_lattice_row_change"].get<double>());
   EXPECT_EQ(scattered["sun_lattice_refine"], 4);  // the default refinement, within the budget
   EXPECT_GE(scattered["sun_lattice_segment"].get<int>(), 1);  // cells per scatter invocation
+  EXPECT_GE(scattered["sun_lattice_block_rows"].get<int>(), 1);  // and rows
   // The lattice as drawn: undoubled by default.
   EXPECT_EQ(scattered["sun_lattice_cells_per_wavelength"], 16.0);
   EXPECT_EQ(scattered["sun_lattice_cells"], 32);
@@ -269,7 +270,7 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   // The limits of ocean/method.hpp: past them, refused before anything renders.
   for (const std::string& past : std::vector<std::string>{
            "--sun-cells-per-wavelength 129", "--sun-max-cells-per-wavelength 129",
-           "--sun-cells 16385", "--sun-segment 16385", "--sun-segment -1"}) {
+           "--sun-cells 16385", "--sun-segment 16385", "--sun-segment -1", "--sun-block-rows 9"}) {
     const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
     EXPECT_EQ(refused.status, 2) << past;
     EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;
