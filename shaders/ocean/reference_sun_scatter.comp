@@ -95,15 +95,15 @@
 // wrong (stop 22 measured 20-70 % of the far rows' sun lost, and garbage, at 5 x 5 to 8 x 8
 // subcells with 60 waves). The CPU (ocean_node.cpp, scatter_iterations) sizes the segments so
 // that an invocation's worst case, every cell refined, stays within half that budget there: 2 to
-// 4 cells at 60 to 120 waves with 8 x 8 subcells. An invocation evaluates both rows of corners of
-// its segment, 2 (segment + 1) / segment a cell, so short segments evaluate most corners twice
-// over; a renderer without the limit (a GPU) takes segments of 64 cells (kScatterFreeSegment,
-// stop 41).
+// 4 cells at 60 to 120 waves with 8 x 8 subcells, a row at a time. An invocation evaluates
+// every corner of its cells, (rows + 1)(segment + 1) for rows x segment cells: 2.5 to 3.0 a cell
+// there, so a renderer without the limit (a GPU) takes blocks of 4 rows of 64 cells instead
+// (kScatterFreeBlockRows, kScatterFreeSegment; 1.27 a cell; stop 41).
 layout(local_size_x = 64) in;
 
-// Rows of cells per invocation of pass 2 (the CPU's define: ocean_node.cpp, scatter_rows): an
-// invocation evaluates (REFERENCE_ROWS + 1) (segment + 1) corners for REFERENCE_ROWS x segment
-// cells. 1 on llvmpipe, whose loop budget the rows multiply.
+// Rows of cells per invocation of pass 2 (the CPU's define: ocean_node.cpp,
+// scatter_block_rows_): an invocation evaluates (REFERENCE_ROWS + 1) (segment + 1) corners for
+// REFERENCE_ROWS x segment cells. 1 on llvmpipe, whose loop budget the rows multiply.
 #ifndef REFERENCE_ROWS
 #define REFERENCE_ROWS 1
 #endif
@@ -639,8 +639,10 @@ void main() {
     for (int r = 0; r < REFERENCE_ROWS; ++r) {
       if (r >= rows) break;
       // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
-      const vec3 e_u = 0.5 * ((right_rest[r] - left_rest[r]) + (right_rest[r + 1] - left_rest[r + 1]));
-      const vec3 e_v = 0.5 * ((left_rest[r + 1] - left_rest[r]) + (right_rest[r + 1] - right_rest[r]));
+      const vec3 e_u =
+          0.5 * ((right_rest[r] - left_rest[r]) + (right_rest[r + 1] - left_rest[r + 1]));
+      const vec3 e_v =
+          0.5 * ((left_rest[r + 1] - left_rest[r]) + (right_rest[r + 1] - right_rest[r]));
       ScatterCell(left[r], right[r], left[r + 1], right[r + 1], length(cross(e_u, e_v)),
                   max(length(e_u), length(e_v)), unresolved, unresolved_height);
     }
