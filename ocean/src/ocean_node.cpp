@@ -901,8 +901,7 @@ class OceanNode final : public gl::Node {
                       false, coarse_sums_);
     lattice_doublings_ = 0;
     for (;;) {
-      glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
-      measure_lattice(inputs, measure);
+      measure_lattice(inputs, measure);  // from the sums scatter_checked read (after its barrier)
       // Both from the first lattice: rounding each doubling's cap would drift (32 to 129 in
       // four), and sqrt 2 times sqrt 2 is 2 + 4e-16, so four doublings of 16 by sqrt 2 gave
       // 64.00000000000001, past the 64 that ReferenceSampling allows when validate redrew that
