@@ -35,6 +35,7 @@ struct RenderArgs {
   bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
   int sun_segment = 0;  // the reference's sun: cells per scatter invocation (0: the renderer's)
   int sun_block_rows = 0;  // and rows of cells per scatter invocation (0: the renderer's)
+  std::int64_t sun_refined_queue = -1;      // and its refined cells' queue (-1: default; 0: none)
   std::string reference_sun = "scattered";  // the reference's sun: scattered or gathered
   std::string sun_sums;  // the reference's scattered sun's per-pixel sums (.exr); empty: none
 };

@@ -39,6 +39,10 @@ std::string stats_json(const RenderStats& stats) {
     json["sun_lattice_refine"] = stats.sun_lattice_refine;
     json["sun_lattice_segment"] = stats.sun_lattice_segment;
     json["sun_lattice_block_rows"] = stats.sun_lattice_block_rows;
+    json["sun_lattice_refined_queue"] = stats.sun_lattice_refined_queue;
+    json["sun_lattice_scattered_cells"] = stats.sun_lattice_scattered_cells;
+    json["sun_lattice_refined_cells"] = stats.sun_lattice_refined_cells;
+    json["sun_lattice_refined_in_place"] = stats.sun_lattice_refined_in_place;
     json["sun_lattice_rescatters"] = stats.sun_lattice_rescatters;
     json["sun_lattice_hidden"] = stats.sun_lattice_hidden;
     json["sun_lattice_cells_per_wavelength"] = stats.sun_lattice_cells_per_wavelength;
@@ -149,11 +153,21 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
   render
       ->add_option("--sun-block-rows", args.sun_block_rows,
                    "The reference's sun, scattered: the rows of cells each invocation of its "
-                   "scatter takes, a column of N + 1 corners serving N cells (0: 1 on llvmpipe, "
-                   "4 on other renderers; held on llvmpipe to what its loop limit allows); the "
-                   "same image to float rounding, for timing (--stats sun_lattice_block_rows, "
-                   "sun_lattice_ms)")
+                   "scatter takes, a column of N + 1 corners serving N cells (0: 4, held on "
+                   "llvmpipe to what its loop limit allows); the same image to float rounding, "
+                   "for timing (--stats sun_lattice_block_rows, sun_lattice_ms)")
       ->check(CLI::Range(0, ocean::kReferenceMaxSunBlockRows))
+      ->capture_default_str();
+  render
+      ->add_option(
+          "--sun-refined-queue", args.sun_refined_queue,
+          "The reference's sun, scattered: the places of the queue that takes its "
+          "refined cells (those near the mirror slope, cut into subcells) to a pass of "
+          "their own (-1: the most, 4194240; 0: none, each refined where its invocation meets it); "
+          "the same image to float rounding, for timing (--stats "
+          "sun_lattice_refined_queue, sun_lattice_refined_cells, "
+          "sun_lattice_refined_in_place, sun_lattice_ms)")
+      ->check(CLI::Range(std::int64_t(-1), ocean::kReferenceMaxSunRefinedQueue))
       ->capture_default_str();
   render->add_flag("--sun-swap-atomics", args.sun_swap_atomics,
                    "The reference's sun, scattered: add its cells' shares by compare-and-swap "
@@ -201,6 +215,7 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.sun_float_atomics = !args.sun_swap_atomics;
   renderer_options.reference.sun_segment = args.sun_segment;
   renderer_options.reference.sun_block_rows = args.sun_block_rows;
+  renderer_options.reference.sun_refined_queue = args.sun_refined_queue;
   renderer_options.reference.sun = *parse_reference_sun(args.reference_sun);  // CLI11 checked
   const std::vector<std::string> problems = {
       renderer_options.method != ocean::OceanMethod::full && scene.camera.height >= kSpaceModeHeight

@@ -45,6 +45,8 @@ class ScatteredSunCache {
     int refine = 0;           // subcells per side as run
     int segment = 0;          // cells per invocation as run (RenderStats::sun_lattice_segment)
     int block_rows = 0;       // rows per invocation as run (RenderStats::sun_lattice_block_rows)
+    std::int64_t refined_queue = 0;  // the refined cells' queue as run (0: refined in place)
+    double cells = 0.0, refined_cells = 0.0, refined_in_place = 0.0;  // its cells, as scattered
     double hidden_fraction = 0.0;
     double ms = 0.0;  // its own scatter's time, wall clock to its end
   };
@@ -83,20 +85,34 @@ constexpr double kShaderLoopBudget = 32768.0;
 // Cells per invocation of the scatter's cells' pass on a renderer without llvmpipe's loop limit
 // (OceanNodeOptions::reference_sun_segment): taking one row, an invocation evaluates the
 // 2 (segment + 1) corners of its two rows of corners, 2.03 a cell at 64, where llvmpipe's
-// budget allows 4 cells
-// (2.5 a cell) at 60 waves with 8 x 8 subcells and 2 (3.0) at 120 (stop 41). 64 keeps a
-// footprint's last segment's idle share small for the narrow footprints near the camera (a
-// few dozen cells a row) while the lattice still has millions of invocations to spread.
+// budget allowed 4 cells (2.5 a cell) at 60 waves with 8 x 8 subcells refined in place and 2
+// (3.0) at 120 (stop 41). 64 keeps a footprint's last segment's idle share small for the narrow
+// footprints near the camera (a few dozen cells a row) while the lattice still has millions of
+// invocations to spread.
 constexpr int kScatterFreeSegment = 64;
-// Rows of cells per invocation of the cells' pass on a renderer without the loop limit
-// (OceanNodeOptions::reference_sun_block_rows): a column of block_rows + 1 corners serves
-// block_rows cells, so that with kScatterFreeSegment an invocation evaluates 5 x 65 corners for
-// 4 x 64 cells, 1.27 a cell against 2.03 a row at a time (stop 41). More rows would save less
-// (1.13 at 8) for twice the corners an invocation holds.
+// Rows of cells per invocation of the cells' pass (OceanNodeOptions::reference_sun_block_rows;
+// on llvmpipe held to its budget, where 4 fit a column of unrefined cells up to about 2,900
+// waves): a column of block_rows + 1 corners serves block_rows cells, so that with
+// kScatterFreeSegment an invocation evaluates 5 x 65 corners for 4 x 64 cells, 1.27 a cell
+// against 2.03 a row at a time (stop 41). More rows would save less (1.13 at 8) for twice the
+// corners an invocation holds.
 constexpr int kScatterFreeBlockRows = 4;
 // The most rows of cells an invocation may take (reference_sun_scatter.comp's REFERENCE_ROWS,
 // the length of its columns of corners).
 constexpr int kScatterMaxBlockRows = kReferenceMaxSunBlockRows;
+// The refined cells' queue (reference_sun_scatter.comp, stop 42): its places by default (the most,
+// 64 MiB), the uints of its header before them, and its storage-buffer binding.
+constexpr std::int64_t kScatterRefinedQueue = kReferenceMaxSunRefinedQueue;
+constexpr int kScatterRefinedHeader = 8;
+constexpr GLuint kScatterRefinedBinding = 10;
+// On a renderer whose invocations may refine in place (no loop limit, or a segment small enough
+// for its budget), a chunk of the cells' pass takes as many cells as the queue times this: the
+// queue overflows only where more than 1 in 16 of a chunk's cells are refined (0.07 % are on
+// wind10_100m_low_sun at 16 cells per wavelength, stop 42), and those are refined in place. At
+// the default queue a GPU's chunk is then about 2^26 cells, 262,140 invocations of 4 x 64, about as
+// many as the H200 holds at once (132 multiprocessors of 2,048). Elsewhere a chunk takes no more
+// cells than the queue holds.
+constexpr std::int64_t kScatterRefinedShare = 16;
 
 // Whether the renderer ends long shader loops silently (llvmpipe's gallivm: "Why segments" in
 // reference_sun_scatter.comp; softpipe shares Mesa's TGSI limits), so that the scatter's
@@ -200,6 +216,10 @@ constexpr GLuint kGridDepthUnit = 14;
 
 // Per image row (top first), the cells along x and y of a scattered lattice's footprint with the
 // most in that row (OceanNode::run_scatter).
+// The scatter's programs: the footprints' pass, the cells' and the refined cells'
+// (reference_sun_scatter.comp).
+using ScatterPrograms = std::array<GLuint, 3>;
+
 struct ScatterRowCells {
   std::vector<double> x, y;
 };
@@ -424,6 +444,10 @@ class OceanNode final : public gl::Node {
             {"reference_sun.refine", double(scatter_refine_)},
             {"reference_sun.segment", double(scatter_segment_)},
             {"reference_sun.block_rows", double(scatter_block_rows_)},
+            {"reference_sun.refined_queue", double(refined_queue_)},
+            {"reference_sun.scattered_cells", lattice_scattered_cells_},
+            {"reference_sun.refined_cells", lattice_refined_cells_},
+            {"reference_sun.refined_in_place", lattice_refined_in_place_},
             {"reference_sun.cells_per_wavelength", lattice_cells_per_wavelength_},
             {"reference_sun.cells", double(lattice_cap_)},
             {"reference_sun.doublings", double(lattice_doublings_)},
@@ -742,6 +766,10 @@ class OceanNode final : public gl::Node {
       scatter_refine_ = kept.refine;
       scatter_segment_ = kept.segment;
       scatter_block_rows_ = kept.block_rows;
+      refined_queue_ = kept.refined_queue;
+      lattice_scattered_cells_ = kept.cells;
+      lattice_refined_cells_ = kept.refined_cells;
+      lattice_refined_in_place_ = kept.refined_in_place;
       hidden_fraction_ = kept.hidden_fraction;
       // What the image cost (the scatter that made the sums), as if this render had scattered
       // them: a reference's time stays its image's, whichever render spent it.
@@ -755,48 +783,79 @@ class OceanNode final : public gl::Node {
     // that ends long loops (llvmpipe): the most subcells per side whose single refined cell fits
     // it (1000 waves at 8 x 8 would not), held there on every renderer so that every renderer
     // draws the same lattice; then the rows and cells per invocation, which change only the
-    // float rounding: on llvmpipe one row (as asked, within the budget) and the most cells whose
-    // worst case, every cell refined, fits; elsewhere kScatterFreeBlockRows x kScatterFreeSegment
-    // (or as asked).
+    // float rounding: on llvmpipe the rows asked for (kScatterFreeBlockRows by default) and the
+    // most cells whose worst case fits, every cell unrefined where the queue takes the refined
+    // ones (else every cell refined in place); elsewhere kScatterFreeBlockRows x
+    // kScatterFreeSegment (or as asked).
     const int waves = static_cast<int>(waves_.waves.size());
     const int feature = local_features_ ? local_features_->loop_iterations_per_point() : 0;
     scatter_refine_ = std::clamp(options_.reference_sun_refine, 1, kScatterMaxRefine);
     while (scatter_refine_ > 1 &&
            scatter_iterations(waves, feature, scatter_refine_, 1) > kShaderLoopBudget)
       --scatter_refine_;
+    refined_queue_ =
+        scatter_refine_ == 1 ? 0
+        : options_.reference_sun_refined_queue < 0
+            ? kScatterRefinedQueue
+            : std::min(options_.reference_sun_refined_queue, kReferenceMaxSunRefinedQueue);
+    const int cell_refine = refined_queue_ > 0 ? 1 : scatter_refine_;
     const bool limited = renderer_limits_loops();
     scatter_block_rows_ =
         std::clamp(options_.reference_sun_block_rows > 0 ? options_.reference_sun_block_rows
-                   : limited                             ? 1
                                                          : kScatterFreeBlockRows,
                    1, kScatterMaxBlockRows);
     while (limited && scatter_block_rows_ > 1 &&
-           scatter_iterations(waves, feature, scatter_refine_, 1, scatter_block_rows_) >
+           scatter_iterations(waves, feature, cell_refine, 1, scatter_block_rows_) >
                kShaderLoopBudget)
       --scatter_block_rows_;
     int most_segment = kScatterMaxCells;
     if (limited) {
       most_segment = 1;
       while (most_segment < kScatterMaxCells &&
-             scatter_iterations(waves, feature, scatter_refine_, 2 * most_segment,
+             scatter_iterations(waves, feature, cell_refine, 2 * most_segment,
                                 scatter_block_rows_) <= kShaderLoopBudget)
         most_segment *= 2;
     }
     scatter_segment_ = options_.reference_sun_segment > 0
                            ? std::min(options_.reference_sun_segment, most_segment)
                            : (limited ? most_segment : kScatterFreeSegment);
+    // A chunk of the cells' pass: where an invocation may not refine in place (llvmpipe, its
+    // segment sized for unrefined cells), no more cells than the queue holds, at least one
+    // invocation's (its cut made smaller where the queue is smaller than that); elsewhere
+    // kScatterRefinedShare times that.
+    scatter_chunk_ = 0;
+    if (refined_queue_ > 0) {
+      const bool in_place_fits =
+          !limited || scatter_iterations(waves, feature, scatter_refine_, scatter_segment_,
+                                         scatter_block_rows_) <= kShaderLoopBudget;
+      while (!in_place_fits &&
+             std::int64_t(scatter_segment_) * scatter_block_rows_ > refined_queue_) {
+        if (scatter_segment_ > 1)
+          scatter_segment_ = std::max(1, scatter_segment_ / 2);
+        else
+          --scatter_block_rows_;
+      }
+      const std::int64_t cells = std::int64_t(scatter_segment_) * scatter_block_rows_;
+      scatter_chunk_ = static_cast<std::uint64_t>(std::max<std::int64_t>(
+          1, refined_queue_ * (in_place_fits ? kScatterRefinedShare : 1) / cells));
+    }
     gl::Defines defines;
     if (local_features_) local_features_->add_defines(defines);
     if (float_atomics_) defines["REFERENCE_FLOAT_ATOMICS"] = "1";
     gl::Defines footprint_defines = defines;
     footprint_defines["REFERENCE_FOOTPRINT_PASS"] = "1";
     defines["REFERENCE_ROWS"] = std::to_string(scatter_block_rows_);
-    // The same source twice: the footprints' pass, then the cells'; both take every uniform.
-    const std::array<GLuint, 2> programs = {
+    gl::Defines refine_defines = defines;
+    refine_defines["REFERENCE_REFINE_PASS"] = "1";
+    // The same source three times: the footprints' pass, the cells' and the refined cells'; each
+    // takes every uniform.
+    const ScatterPrograms programs = {
         context.shaders.program(
             {.compute = "ocean/reference_sun_scatter.comp", .defines = footprint_defines}),
         context.shaders.program(
-            {.compute = "ocean/reference_sun_scatter.comp", .defines = defines})};
+            {.compute = "ocean/reference_sun_scatter.comp", .defines = defines}),
+        context.shaders.program(
+            {.compute = "ocean/reference_sun_scatter.comp", .defines = refine_defines})};
     const auto uniform = [&](const char* name, auto set) {
       for (const GLuint program : programs) set(program, glGetUniformLocation(program, name));
     };
@@ -833,6 +892,20 @@ class OceanNode final : public gl::Node {
     uniform_f("slope_curvature", curvature);
     uniform_i("reference_refine", scatter_refine_);
     uniform_i("reference_segment", scatter_segment_);
+    uniform("refined_capacity", [&](GLuint program, GLint at) {
+      glProgramUniform1ui(program, at, static_cast<GLuint>(refined_queue_));
+    });
+    // The refined cells' queue: its header, and its places when it has any.
+    const std::size_t queue_bytes =
+        (kScatterRefinedHeader + 4 * std::size_t(std::max<std::int64_t>(refined_queue_, 1))) *
+        sizeof(GLuint);
+    if (!refined_buffer_ || refined_buffer_bytes_ != queue_bytes) {
+      refined_buffer_ = gl::make_buffer();
+      glNamedBufferStorage(refined_buffer_.get(), static_cast<GLsizeiptr>(queue_bytes), nullptr,
+                           GL_DYNAMIC_STORAGE_BIT);
+      refined_buffer_bytes_ = queue_bytes;
+    }
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kScatterRefinedBinding, refined_buffer_.get());
     // The margin: how far (pixels) the nearest sea in the image can move on screen, as the
     // shader's per-pixel test (its forward distance over the image's 5 x 5 points seeing the sea).
     double along = INFINITY;
@@ -936,6 +1009,10 @@ class OceanNode final : public gl::Node {
                                       .refine = scatter_refine_,
                                       .segment = scatter_segment_,
                                       .block_rows = scatter_block_rows_,
+                                      .refined_queue = refined_queue_,
+                                      .cells = lattice_scattered_cells_,
+                                      .refined_cells = lattice_refined_cells_,
+                                      .refined_in_place = lattice_refined_in_place_,
                                       .hidden_fraction = hidden_fraction_,
                                       .ms = finer_ms};
       cache->lattice = std::move(kept);
@@ -979,9 +1056,17 @@ class OceanNode final : public gl::Node {
   // scatter_checked of the finer lattice (its footprints' cells per row into
   // lattice_row_cells_); with `timed`, its wall-clock time (ms), else 0 (a lattice no cache
   // keeps needs no time of its own).
-  double run_scatter_timed(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                           int cap, bool timed) {
-    return scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed, finer_sums_);
+  double run_scatter_timed(const ScatterPrograms& programs, GLuint buffer, double spacing, int cap,
+                           bool timed) {
+    const double ms =
+        scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed, finer_sums_);
+    // Its cells and refined cells (the barrier before its sums were read back covers the header).
+    std::array<GLuint, kScatterRefinedHeader> header{};
+    glGetNamedBufferSubData(refined_buffer_.get(), 0, sizeof header, header.data());
+    lattice_scattered_cells_ = scattered_cells_;
+    lattice_refined_cells_ = header[4];
+    lattice_refined_in_place_ = header[5];
+    return ms;
   }
 
   // A kept lattice's sums (ScatteredSunCache) into reference_sun_buffer_, read back and compared
@@ -1026,9 +1111,8 @@ class OceanNode final : public gl::Node {
   // (gl::GlError) if the last is no better. The sums that passed go to `sums`, the one copy the
   // CPU uses (the lattice's convergence, the cache): a second read back would be unchecked. With
   // `timed`, the wall-clock time (ms) of the scatter that passed, waited for; else 0.
-  double scatter_checked(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing,
-                         int cap, ScatterRowCells* row_cells, bool timed,
-                         std::vector<float>& sums) {
+  double scatter_checked(const ScatterPrograms& programs, GLuint buffer, double spacing, int cap,
+                         ScatterRowCells* row_cells, bool timed, std::vector<float>& sums) {
     for (int attempt = 0;; ++attempt) {
       const auto start = std::chrono::steady_clock::now();
       run_scatter(programs, buffer, spacing, cap, row_cells);
@@ -1064,7 +1148,7 @@ class OceanNode final : public gl::Node {
   // One lattice (spacing m, at most cap^2 cells per pixel's footprint) into buffer, cleared
   // first: the footprints' pass (programs[0]), then the cells' (programs[1]); with row_cells, the
   // cells along x and y of each image row's footprint with the most into it.
-  void run_scatter(const std::array<GLuint, 2>& programs, GLuint buffer, double spacing, int cap,
+  void run_scatter(const ScatterPrograms& programs, GLuint buffer, double spacing, int cap,
                    ScatterRowCells* row_cells = nullptr) {
     const float zero = 0.0f;
     glClearNamedBufferData(buffer, GL_R32F, GL_RED, GL_FLOAT, &zero);
@@ -1074,16 +1158,35 @@ class OceanNode final : public gl::Node {
                          float(spacing));
       glProgramUniform1i(program, glGetUniformLocation(program, "reference_max_cells"), cap);
     }
-    // `invocations` invocations of `program` from 0, in batches (first_invocation each; the
-    // shader ignores the last work group's invocations from invocation_end on).
-    const auto dispatch = [](GLuint program, std::uint64_t invocations) {
+    // The refined cells' queue: empty, its totals 0 (header: reference_sun_scatter.comp).
+    const std::array<GLuint, kScatterRefinedHeader> empty_queue = {0, 1, 1, 0, 0, 0, 0, 0};
+    glNamedBufferSubData(refined_buffer_.get(), 0, sizeof empty_queue, empty_queue.data());
+    // `invocations` invocations of `program` from 0, in dispatches of at most `chunk` (the
+    // shader ignores the last work group's invocations from invocation_end on); with `refine`,
+    // each followed by the refined cells' pass over what it queued.
+    const auto dispatch = [&](GLuint program, std::uint64_t invocations, std::uint64_t chunk,
+                              bool refine) {
       const GLint first = glGetUniformLocation(program, "first_invocation");
       const GLint end = glGetUniformLocation(program, "invocation_end");
-      for (std::uint64_t start = 0; start < invocations; start += kScatterBatch) {
-        const std::uint64_t count = std::min(kScatterBatch, invocations - start);
+      for (std::uint64_t start = 0; start < invocations; start += chunk) {
+        const std::uint64_t count = std::min(chunk, invocations - start);
+        if (refine) {
+          // Writes after the last refined cells' pass read the queue (GL orders them).
+          glNamedBufferSubData(refined_buffer_.get(), 0, 4 * sizeof(GLuint), empty_queue.data());
+        }
+        glUseProgram(program);
         glProgramUniform1ui(program, first, static_cast<GLuint>(start));
         glProgramUniform1ui(program, end, static_cast<GLuint>(start + count));
         glDispatchCompute(static_cast<GLuint>((count + 63) / 64), 1, 1);
+        if (refine) {
+          // The queued cells, one invocation each, as many work groups as the cells' pass counted.
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+          glUseProgram(programs[2]);
+          glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, refined_buffer_.get());
+          glDispatchComputeIndirect(0);
+          glBindBuffer(GL_DISPATCH_INDIRECT_BUFFER, 0);
+          glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+        }
         // Handed to the GPU dispatch by dispatch, rather than as one submission of many seconds
         // (a lattice at 128 per wavelength takes 17 s on the H200; stop 40's lost sums came from
         // scatters of 8 s and more, cause unknown).
@@ -1091,8 +1194,7 @@ class OceanNode final : public gl::Node {
       }
     };
     // Footprints' pass: one invocation per footprint.
-    glUseProgram(programs[0]);
-    dispatch(programs[0], footprint_count_);
+    dispatch(programs[0], footprint_count_, kScatterBatch, false);
     // Cells' pass: ceil(ky / block rows) x ceil(kx / segment) invocations per footprint,
     // numbered without gaps (reference_sun_scatter.comp, pass 2), in batches of whole
     // footprints whose invocations a 32-bit index counts (the whole lattice's passed 2^32 on the 20
@@ -1113,6 +1215,7 @@ class OceanNode final : public gl::Node {
       std::uint64_t first = 0, end = 0, invocations = 0;
     };
     std::vector<Batch> batches{Batch{}};
+    scattered_cells_ = 0.0;
     const std::uint64_t segment = static_cast<std::uint64_t>(scatter_segment_);
     const std::uint64_t batch_invocations =
         std::clamp<std::uint64_t>(options_.reference_sun_batch, 1, kReferenceMaxSunBatch);
@@ -1122,6 +1225,7 @@ class OceanNode final : public gl::Node {
       const std::uint64_t block_rows = static_cast<std::uint64_t>(scatter_block_rows_);
       const std::uint64_t invocations =
           ((ky + block_rows - 1) / block_rows) * ((kx + segment - 1) / segment);
+      scattered_cells_ += double(kx) * double(ky);
       const int x = static_cast<int>(f % columns) - scatter_margin_;
       const int y = static_cast<int>(f / columns) - scatter_margin_;  // window row, from the bottom
       if (row_cells && x >= 0 && x < scatter_width_ && y >= 0 && y < scatter_height_) {
@@ -1151,14 +1255,15 @@ class OceanNode final : public gl::Node {
                          static_cast<GLsizeiptr>(starts.size() * sizeof(GLuint)), starts.data());
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, kScatterFootprintStartBinding,
                      footprint_start_buffer_.get());
-    glUseProgram(programs[1]);
     const GLint first_footprint = glGetUniformLocation(programs[1], "first_footprint");
     const GLint footprint_end = glGetUniformLocation(programs[1], "footprint_end");
     for (const Batch& batch : batches) {
       if (batch.invocations == 0) continue;
       glProgramUniform1ui(programs[1], first_footprint, static_cast<GLuint>(batch.first));
       glProgramUniform1ui(programs[1], footprint_end, static_cast<GLuint>(batch.end));
-      dispatch(programs[1], batch.invocations);
+      dispatch(programs[1], batch.invocations,
+               scatter_chunk_ > 0 ? std::min(scatter_chunk_, kScatterBatch) : kScatterBatch,
+               refined_queue_ > 0);
     }
   }
 
@@ -1283,6 +1388,17 @@ class OceanNode final : public gl::Node {
   int scatter_refine_ = 1;
   int scatter_segment_ = 1;
   int scatter_block_rows_ = 1;
+  // The refined cells' queue as run (places; 0: refined in place) and its buffer, and the
+  // invocations per chunk of the cells' pass (0: one chunk, as many as a dispatch takes).
+  std::int64_t refined_queue_ = 0;
+  gl::Buffer refined_buffer_;
+  std::size_t refined_buffer_bytes_ = 0;
+  std::uint64_t scatter_chunk_ = 0;
+  // The cells of the lattice run last (run_scatter); of the finer lattice, and its refined
+  // cells and those of them refined in place (the queue full).
+  double scattered_cells_ = 0.0;
+  double lattice_scattered_cells_ = 0.0, lattice_refined_cells_ = 0.0,
+         lattice_refined_in_place_ = 0.0;
   gl::Buffer footprint_buffer_;  // 12 floats per footprint, between the scatter's passes
   std::size_t footprint_count_ = 0;
   // Per footprint, its first invocation of pass 2, counted from its batch's first (run_scatter).

@@ -206,7 +206,8 @@ struct Renderer::Impl {
             r.sun_batch_invocations >= 1 &&
             r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch && r.sun_segment >= 0 &&
             r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_block_rows >= 0 &&
-            r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows &&
+            r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows && r.sun_refined_queue >= -1 &&
+            r.sun_refined_queue <= ocean::kReferenceMaxSunRefinedQueue &&
             r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
@@ -221,8 +222,9 @@ struct Renderer::Impl {
             "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "] and sun_block_rows in [0, " +
-            std::to_string(ocean::kReferenceMaxSunBlockRows) + "]");
+            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_block_rows in [0, " +
+            std::to_string(ocean::kReferenceMaxSunBlockRows) + "] and sun_refined_queue in [-1, " +
+            std::to_string(ocean::kReferenceMaxSunRefinedQueue) + "]");
     }
     if (sea_visible && !space)
       graph.add(ocean::make_ocean_node(
@@ -246,6 +248,7 @@ struct Renderer::Impl {
            .reference_float_atomics = options.reference.sun_float_atomics,
            .reference_sun_segment = options.reference.sun_segment,
            .reference_sun_block_rows = options.reference.sun_block_rows,
+           .reference_sun_refined_queue = options.reference.sun_refined_queue,
            .reference_sun_batch = options.reference.sun_batch_invocations,
            .reference_sun_cache = options.reference.sun_cache,
            .reference_sun_test_faults = options.reference.sun_test_faults,
@@ -605,6 +608,10 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_refine = static_cast<int>(m.node_measurement("reference_sun.refine"));
   stats.sun_lattice_segment = static_cast<int>(m.node_measurement("reference_sun.segment"));
   stats.sun_lattice_block_rows = static_cast<int>(m.node_measurement("reference_sun.block_rows"));
+  stats.sun_lattice_refined_queue = m.node_measurement("reference_sun.refined_queue");
+  stats.sun_lattice_scattered_cells = m.node_measurement("reference_sun.scattered_cells");
+  stats.sun_lattice_refined_cells = m.node_measurement("reference_sun.refined_cells");
+  stats.sun_lattice_refined_in_place = m.node_measurement("reference_sun.refined_in_place");
   stats.sun_lattice_row_changes = m.node_row_measurement("reference_sun.lattice_row_changes");
   stats.sun_lattice_cells_per_wavelength =
       m.node_measurement("reference_sun.cells_per_wavelength");

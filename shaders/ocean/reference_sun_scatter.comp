@@ -94,16 +94,19 @@
 // a few of its waves, and a row of hundreds of cells, or a refined cell's subcells, came out
 // wrong (stop 22 measured 20-70 % of the far rows' sun lost, and garbage, at 5 x 5 to 8 x 8
 // subcells with 60 waves). The CPU (ocean_node.cpp, scatter_iterations) sizes the segments so
-// that an invocation's worst case, every cell refined, stays within half that budget there: 2 to
-// 4 cells at 60 to 120 waves with 8 x 8 subcells, a row at a time. An invocation evaluates
-// every corner of its cells, (rows + 1)(segment + 1) for rows x segment cells: 2.5 to 3.0 a cell
-// there, so a renderer without the limit (a GPU) takes blocks of 4 rows of 64 cells instead
-// (kScatterFreeBlockRows, kScatterFreeSegment; 1.27 a cell; stop 41).
+// that an invocation's worst case stays within half that budget there. An invocation evaluates
+// every corner of its cells, (rows + 1)(segment + 1) for rows x segment cells. Until stop 41 the
+// worst case was every cell refined in place: 2 to 4 cells at 60 to 120 waves with 8 x 8
+// subcells, a row at a time, 2.5 to 3.0 corners a cell, on every renderer. Stop 41 gave a
+// renderer without the limit (a GPU) blocks of 4 rows of 64 cells (kScatterFreeBlockRows,
+// kScatterFreeSegment; 1.27 a cell). Since stop 42 the refined cells go to a pass of their own
+// (the refined cells' queue, below), so the worst case on llvmpipe is every cell unrefined, and
+// it takes blocks too: 4 rows of 64 cells at 60 waves, of 32 at 120.
 layout(local_size_x = 64) in;
 
 // Rows of cells per invocation of pass 2 (the CPU's define: ocean_node.cpp,
 // scatter_block_rows_): an invocation evaluates (REFERENCE_ROWS + 1) (segment + 1) corners for
-// REFERENCE_ROWS x segment cells. 1 on llvmpipe, whose loop budget the rows multiply.
+// REFERENCE_ROWS x segment cells.
 #ifndef REFERENCE_ROWS
 #define REFERENCE_ROWS 1
 #endif
@@ -412,22 +415,83 @@ const float FLOAT_WHOLE_NUMBERS = 16777216.0;
 // peak, and the cell reflects nothing a finer cut would change.
 const float REFERENCE_REFINE_SIGMAS = 4.0;
 
+// The refined cells' queue (stop 42). A cell near the mirror slope costs its (refine + 1)^2 - 4
+// subcells' corners, 77 at 8 x 8 against the 1.27 an unrefined cell costs in a block of 4 x 64,
+// and few cells are refined (ScatterCell). Refined where the cells' pass meets them, every lane
+// of a GPU's warp (or llvmpipe's 8 in lockstep) waited on each lane's refined cells in turn, and
+// llvmpipe's loop budget sized every invocation for all of its cells refined. So the cells' pass
+// puts each refined cell's place into this queue (the footprint, the cell's column and row) and
+// the refined cells' pass (REFERENCE_REFINE_PASS) refines one cell an invocation. The CPU
+// dispatches the cells' pass in chunks and the refined cells' pass after each, indirectly from
+// the header: [0] its work groups, [1], [2] 1, [3] the cells queued in the chunk (the places past
+// refined_capacity are refined in place: the queue is full), [4] the lattice's refined cells, [5]
+// those refined in place. refined_capacity 0: every refined cell is refined in place, as before
+// stop 42.
+layout(std430, binding = 10) coherent buffer ReferenceRefinedCells {
+  uint refined_header[8];
+  uvec4 refined_cells[];
+};
+uniform uint refined_capacity;
+// This invocation's refined cells and those of them refined in place, added to the header's [4]
+// and [5] once at its end (FlushRefinedCounts) rather than by an atomic each.
+uint refined_count = 0u, refined_in_place = 0u;
+
+void FlushRefinedCounts() {
+  if (refined_count > 0u) atomicAdd(refined_header[4], refined_count);
+  if (refined_in_place > 0u) atomicAdd(refined_header[5], refined_in_place);
+}
+
+// The sun of the refined cell of corners c00, c10 (along u), c01 (along v), c11 and rest area
+// rest_area (m^2): each of its refine x refine subcells with its own exact corners (every wave),
+// a row of corners at a time (rest positions bilinear in the cell's), deposited to the pixel of
+// its glint.
+void RefineCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area, int refine) {
+  Corner below[REFERENCE_MAX_REFINE + 1], above[REFERENCE_MAX_REFINE + 1];
+  const float sub_area = rest_area / float(refine * refine);
+  for (int j = 0; j <= refine; ++j) {
+    const float t = float(j) / float(refine);
+    for (int i = 0; i <= refine; ++i) {
+      const float u = float(i) / float(refine);
+      if ((i == 0 || i == refine) && (j == 0 || j == refine)) {
+        above[i] = j == 0 ? (i == 0 ? c00 : c10) : (i == 0 ? c01 : c11);
+      } else {
+        above[i] = ReferenceCorner(mix(mix(c00.rest, c10.rest, u), mix(c01.rest, c11.rest, u), t));
+      }
+    }
+    if (j > 0) {
+      for (int i = 0; i < refine; ++i) {
+        const Corner s00 = below[i], s10 = below[i + 1], s01 = above[i], s11 = above[i + 1];
+        const vec3 sub_centre = 0.25 * (s00.position + s10.position + s01.position + s11.position);
+        const vec3 sub_to_eye = FrameCameraPosition() - sub_centre;
+        const float sub_omega = ReferenceCellSolidAngle(
+            0.25 * (s00.area + s10.area + s01.area + s11.area), sub_area, sub_to_eye);
+        if (!(sub_omega > 0.0)) continue;
+        const CellGlint sub = ReferenceCellGlint(s00, s10, s01, s11, normalize(sub_to_eye));
+        if (sub.sun > 0.0) Deposit(0, PixelOf(sub.point), vec4(sub_omega * sub.sun, 0.0, 0.0, 0.0));
+      }
+    }
+    for (int i = 0; i <= refine; ++i) below[i] = above[i];
+  }
+}
+
 // One cell of corners c00, c10 (along u), c01 (along v), c11, rest area rest_area (m^2) and
-// longer rest side `size` (m): its deposits. unresolved: 1 if its footprint is over the cap,
-// else 0.
+// longer rest side `size` (m), at `place` (its footprint, column and row: the refined cells'
+// queue): its deposits. unresolved: 1 if its footprint is over the cap, else 0.
 //
 // Refinement. The parallelogram a cell's corners span is a linearisation of its slope field:
 // each glint it holds is counted with the secant's 1 / |det dzeta/dx| instead of the tangent's at
 // the glint, an error of the order of the cell's size (its bias, averaged over many glints, of
 // its square: tests/unit/cell_slope_density_test.cpp). Only the few cells whose slopes come near
-// the mirror slope reflect the sun at all (a few per cent at 16 cells per wavelength), so those
-// are cut into reference_refine x reference_refine subcells, each with its own exact corners
-// (every wave) and parallelogram, as if the lattice were that much finer where it matters and
-// no finer elsewhere. A cell's slopes are the patch of its corners' to within slope_curvature x
-// size^2 / 8 (the bilinear interpolant's error for second derivatives below slope_curvature),
-// which widens the test so that a glint the corners' box misses is refined too.
+// the mirror slope reflect the sun at all (0.07 % of wind10_100m_low_sun's at 16 cells per
+// wavelength, 2 % of the tests' small view at 4, a quarter at 2: stop 42), so those are cut
+// into reference_refine x reference_refine subcells, each with its own exact corners (every
+// wave) and parallelogram, as if the lattice were that much finer where it matters and no finer
+// elsewhere (RefineCell, in place or from the queue). A cell's slopes are the patch of
+// its corners' to within slope_curvature x size^2 / 8 (the bilinear interpolant's error for
+// second derivatives below slope_curvature), which widens the test so that a glint the corners'
+// box misses is refined too.
 void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area, float size,
-                 float unresolved, float unresolved_height) {
+                 float unresolved, float unresolved_height, uvec3 place) {
   const vec3 centre = 0.25 * (c00.position + c10.position + c01.position + c11.position);
   const vec3 to_eye = FrameCameraPosition() - centre;
   const float omega =
@@ -448,34 +512,15 @@ void ScatterCell(Corner c00, Corner c10, Corner c01, Corner c11, float rest_area
   // are not refined either.
   if (refine > 1 && unresolved == 0.0 && all(greaterThanEqual(g.mirror, g.low - margin)) &&
       all(lessThanEqual(g.mirror, g.high + margin))) {
-    // The subcells, a row of corners at a time (rest positions bilinear in the cell's).
-    Corner below[REFERENCE_MAX_REFINE + 1], above[REFERENCE_MAX_REFINE + 1];
-    const float sub_area = rest_area / float(refine * refine);
-    for (int j = 0; j <= refine; ++j) {
-      const float t = float(j) / float(refine);
-      for (int i = 0; i <= refine; ++i) {
-        const float u = float(i) / float(refine);
-        if ((i == 0 || i == refine) && (j == 0 || j == refine)) {
-          above[i] = j == 0 ? (i == 0 ? c00 : c10) : (i == 0 ? c01 : c11);
-        } else {
-          above[i] = ReferenceCorner(mix(mix(c00.rest, c10.rest, u), mix(c01.rest, c11.rest, u), t));
-        }
-      }
-      if (j > 0) {
-        for (int i = 0; i < refine; ++i) {
-          const Corner s00 = below[i], s10 = below[i + 1], s01 = above[i], s11 = above[i + 1];
-          const vec3 sub_centre =
-              0.25 * (s00.position + s10.position + s01.position + s11.position);
-          const vec3 sub_to_eye = FrameCameraPosition() - sub_centre;
-          const float sub_omega = ReferenceCellSolidAngle(
-              0.25 * (s00.area + s10.area + s01.area + s11.area), sub_area, sub_to_eye);
-          if (!(sub_omega > 0.0)) continue;
-          const CellGlint sub = ReferenceCellGlint(s00, s10, s01, s11, normalize(sub_to_eye));
-          if (sub.sun > 0.0)
-            Deposit(0, PixelOf(sub.point), vec4(sub_omega * sub.sun, 0.0, 0.0, 0.0));
-        }
-      }
-      for (int i = 0; i <= refine; ++i) below[i] = above[i];
+    ++refined_count;
+    const uint index = refined_capacity > 0u ? atomicAdd(refined_header[3], 1u) : 0xffffffffu;
+    if (index < refined_capacity) {
+      refined_cells[index] = uvec4(place, 0u);
+      // The queue's places are taken without gaps from 0, so one in 64 starts a work group.
+      if (index % 64u == 0u) atomicAdd(refined_header[0], 1u);
+    } else {
+      ++refined_in_place;
+      RefineCell(c00, c10, c01, c11, rest_area, refine);
     }
   } else if (g.sun > 0.0) {
     Deposit(0, PixelOf(g.point), vec4(omega * g.sun, 0.0, 0.0, 0.0));
@@ -559,7 +604,95 @@ void main() {
   footprints[3u * footprint + 2u] = vec4(kx, ky, unresolved, unresolved_height);
 }
 #else
-// Pass 2: one invocation per segment of a row of cells of a footprint (see above).
+// A block of pass 2 (REFERENCE_ROWS rows of cells from row j, the segment's cells from column
+// first, of one footprint) and its corners' rest offsets from footprint_origin, which
+// StartBlock sets to the block's first corner. Each corner is given from that corner by
+// differences that stay as small as the block: a corner's offset from the footprint's q00
+// reaches the footprint's length, 64,000 cells one row below the horizon on the suite's views,
+// where a float's rounding is 1.5e-3 rad of the shortest wave's argument (2 pi 64,000 / 16 x
+// 6e-8), 3 % of the 0.049 rad across a subcell at 16 cells per wavelength and 8 x 8 subcells;
+// the arguments' differences across a subcell, from which its parallelogram is made, would carry
+// that rounding (stop 31's noise; 0.1 % at the 2,048 cells a side that were the most until stop
+// 34). Row v's corner at u is a(v) + u (b(v) - a(v)), a(v) = v q01, b(v) = q10 + v (q11 - q10)
+// (q.. the footprint's corners from its q00). From row j's corner at u0, row j + r's at u0 + du
+// is r (q01 + u0 twist) / ky + du edge_r, with twist = q11 - q10 - q01 and edge_r = edge_0 + r
+// twist / ky its edge along u. The refined cells' pass (REFERENCE_REFINE_PASS) starts the block
+// of its cell's place again, so that its corners are the same floats as the cells' pass's.
+struct Block {
+  int kx, ky;               // the footprint's cells along u and v
+  int first, j;             // the block's first column and row of cells
+  float unresolved;         // 1: the footprint is over the cap
+  float unresolved_height;  // m: the waves the grid cannot draw (GridShows)
+  vec2 step;                // m: along v, per row of cells times ky, at u0
+  vec2 edge0, twist;        // m: row j's edge along u, and the footprint's twist
+};
+
+// footprint's block from column `first` and row j of cells; sets footprint_origin.
+Block StartBlock(uint footprint, int first, int j) {
+  Block b;
+  const vec4 cells = footprints[3u * footprint + 2u];
+  b.kx = int(cells.x);
+  b.ky = int(cells.y);
+  b.first = first;
+  b.j = j;
+  b.unresolved = cells.z;
+  b.unresolved_height = cells.w;
+  const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
+  // The footprint's corners from its q00 (m, nadir frame's axes).
+  const vec2 q10 = q0.zw - q0.xy, q01 = q1.xy - q0.xy, q11 = q1.zw - q0.xy;
+  const float v0 = float(j) / float(b.ky);
+  const vec2 a0 = v0 * q01, b0 = mix(q10, q11, v0);
+  b.edge0 = b0 - a0;
+  b.twist = q11 - q10 - q01;
+  const float u0 = float(first) / float(b.kx);
+  footprint_origin = q0.xy + (a0 + u0 * b.edge0);
+  b.step = q01 + u0 * b.twist;
+  return b;
+}
+
+// m, from footprint_origin: the block's corner r rows above its first and `column` columns
+// right of its first.
+vec2 BlockCornerOffset(Block b, int r, int column) {
+  const vec2 row_start = float(r) * b.step / float(b.ky);
+  const vec2 row_edge = b.edge0 + float(r) * b.twist / float(b.ky);
+  return row_start + (float(column) / float(b.kx)) * row_edge;
+}
+
+// The rest point (m, from footprint_origin, with the rest height at it) of a block's corner.
+vec3 BlockCornerRest(vec2 offset) {
+  return vec3(offset, ReferenceRestHeight(frame_sea_curvature, footprint_origin + offset));
+}
+
+// The rest area (m^2) of the cell of rest corners r00, r10 (along u), r01, r11: its bilinear
+// patch's, |e_u x e_v| with the mean edges; and its longer mean edge (m).
+vec2 RestCellSize(vec3 r00, vec3 r10, vec3 r01, vec3 r11) {
+  const vec3 e_u = 0.5 * ((r10 - r00) + (r11 - r01));
+  const vec3 e_v = 0.5 * ((r01 - r00) + (r11 - r10));
+  return vec2(length(cross(e_u, e_v)), max(length(e_u), length(e_v)));
+}
+
+#ifdef REFERENCE_REFINE_PASS
+// Pass 3: one invocation per refined cell queued by the chunk of pass 2 just run (the queue
+// above): its block started again, its four corners, and its subcells.
+void main() {
+  const uint index = gl_GlobalInvocationID.x;
+  if (index >= min(refined_header[3], refined_capacity)) return;
+  const uvec4 place = refined_cells[index];
+  const int segment_cells = max(reference_segment, 1);
+  const int column = int(place.y), row = int(place.z);
+  const Block b = StartBlock(place.x, (column / segment_cells) * segment_cells,
+                             (row / REFERENCE_ROWS) * REFERENCE_ROWS);
+  const int r = row - b.j, i = column - b.first;
+  const vec2 o00 = BlockCornerOffset(b, r, i), o10 = BlockCornerOffset(b, r, i + 1);
+  const vec2 o01 = BlockCornerOffset(b, r + 1, i), o11 = BlockCornerOffset(b, r + 1, i + 1);
+  const vec2 size = RestCellSize(BlockCornerRest(o00), BlockCornerRest(o10), BlockCornerRest(o01),
+                                 BlockCornerRest(o11));
+  RefineCell(ReferenceCorner(o00), ReferenceCorner(o10), ReferenceCorner(o01),
+             ReferenceCorner(o11), size.x, clamp(reference_refine, 1, REFERENCE_MAX_REFINE));
+  Flush(0);
+}
+#else
+// Pass 2: one invocation per segment of a block of rows of cells of a footprint (see above).
 layout(std430, binding = 9) readonly buffer ReferenceFootprintStarts { uint footprint_starts[]; };
 
 void main() {
@@ -584,67 +717,34 @@ void main() {
   // SIMD lanes of a work group (llvmpipe runs 8 in lockstep) are then active or idle together.
   const uint local_id = id - footprint_starts[footprint];
   const int blocks = (ky + REFERENCE_ROWS - 1) / REFERENCE_ROWS;
-  const int j = int(local_id % uint(blocks)) * REFERENCE_ROWS;
-  const int rows = min(REFERENCE_ROWS, ky - j);
   const int first = int(local_id / uint(blocks)) * segment_cells;
   if (first >= kx) return;
+  const Block b = StartBlock(footprint, first, int(local_id % uint(blocks)) * REFERENCE_ROWS);
+  const int rows = min(REFERENCE_ROWS, ky - b.j);
   const int last = min(kx, first + segment_cells);
-  const float unresolved = cells.z;
-  const float unresolved_height = cells.w;
-  const vec4 q0 = footprints[3u * footprint], q1 = footprints[3u * footprint + 1u];
-  // The footprint's corners from its q00 (m, nadir frame's axes).
-  const vec2 q10 = q0.zw - q0.xy, q01 = q1.xy - q0.xy, q11 = q1.zw - q0.xy;
-  // The rows j to j + rows of corners, cells first to last - 1 of them, left to right, a column
-  // of rows + 1 corners at a time. Each is given from the segment's first corner of row j
-  // (footprint_origin: see ReferenceCorner), by differences that stay as small as the block: a
-  // corner's offset from the footprint's q00 reaches the footprint's length, 64,000 cells one
-  // row below the horizon on the suite's views, where a float's rounding is 1.5e-3 rad of the
-  // shortest wave's argument (2 pi 64,000 / 16 x 6e-8), 3 % of the 0.049 rad across a subcell at
-  // 16 cells per wavelength and 8 x 8 subcells; the arguments' differences across a subcell,
-  // from which its parallelogram is made, would carry that rounding (stop 31's noise; 0.1 % at
-  // the 2,048 cells a side that were the most until stop 34).
-  // Row v's corner at u is a(v) + u (b(v) - a(v)), a(v) = v q01, b(v) = q10 + v (q11 - q10). From
-  // row j's corner at u0, row j + r's at u0 + du is r (q01 + u0 twist) / ky + du edge_r, with
-  // twist = q11 - q10 - q01 and edge_r = edge_0 + r twist / ky its edge along u (for r = 1 the
-  // same float operations as the one row of corners pairs before stop 41).
-  const float v0 = float(j) / float(ky);
-  const vec2 a0 = v0 * q01, b0 = mix(q10, q11, v0);
-  const vec2 edge0 = b0 - a0;  // row j's, along u
-  const vec2 twist = q11 - q10 - q01;
-  const float u0 = float(first) / float(kx);
-  const vec2 segment_origin = a0 + u0 * edge0;
-  footprint_origin = q0.xy + segment_origin;
-  const vec2 step = q01 + u0 * twist;
   // The column of corners (and their rest points, m, from footprint_origin) at the left of the
   // cells being scattered, then at their right.
   Corner left[REFERENCE_ROWS + 1], right[REFERENCE_ROWS + 1];
   vec3 left_rest[REFERENCE_ROWS + 1], right_rest[REFERENCE_ROWS + 1];
-  vec2 row_start[REFERENCE_ROWS + 1], row_edge[REFERENCE_ROWS + 1];
   for (int r = 0; r <= REFERENCE_ROWS; ++r) {
     if (r > rows) break;
-    row_start[r] = float(r) * step / float(ky);
-    row_edge[r] = edge0 + float(r) * twist / float(ky);
-    left[r] = ReferenceCorner(row_start[r]);
-    left_rest[r] = vec3(row_start[r],
-                        ReferenceRestHeight(frame_sea_curvature, footprint_origin + row_start[r]));
+    const vec2 offset = BlockCornerOffset(b, r, 0);
+    left[r] = ReferenceCorner(offset);
+    left_rest[r] = BlockCornerRest(offset);
   }
   for (int i = first + 1; i <= last; ++i) {
-    const float du = float(i - first) / float(kx);
     for (int r = 0; r <= REFERENCE_ROWS; ++r) {
       if (r > rows) break;
-      const vec2 xy = row_start[r] + du * row_edge[r];
-      right[r] = ReferenceCorner(xy);
-      right_rest[r] = vec3(xy, ReferenceRestHeight(frame_sea_curvature, footprint_origin + xy));
+      const vec2 offset = BlockCornerOffset(b, r, i - first);
+      right[r] = ReferenceCorner(offset);
+      right_rest[r] = BlockCornerRest(offset);
     }
     for (int r = 0; r < REFERENCE_ROWS; ++r) {
       if (r >= rows) break;
-      // The rest cell's area: its bilinear patch's, |(e_u) x (e_v)| with the mean edges.
-      const vec3 e_u =
-          0.5 * ((right_rest[r] - left_rest[r]) + (right_rest[r + 1] - left_rest[r + 1]));
-      const vec3 e_v =
-          0.5 * ((left_rest[r + 1] - left_rest[r]) + (right_rest[r + 1] - right_rest[r]));
-      ScatterCell(left[r], right[r], left[r + 1], right[r + 1], length(cross(e_u, e_v)),
-                  max(length(e_u), length(e_v)), unresolved, unresolved_height);
+      const vec2 size =
+          RestCellSize(left_rest[r], right_rest[r], left_rest[r + 1], right_rest[r + 1]);
+      ScatterCell(left[r], right[r], left[r + 1], right[r + 1], size.x, size.y, b.unresolved,
+                  b.unresolved_height, uvec3(footprint, uint(i - 1), uint(b.j + r)));
     }
     for (int r = 0; r <= REFERENCE_ROWS; ++r) {
       left[r] = right[r];
@@ -653,5 +753,7 @@ void main() {
   }
   Flush(0);
   Flush(1);
+  FlushRefinedCounts();
 }
+#endif
 #endif

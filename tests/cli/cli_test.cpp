@@ -239,6 +239,15 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   EXPECT_EQ(scattered["sun_lattice_refine"], 4);  // the default refinement, within the budget
   EXPECT_GE(scattered["sun_lattice_segment"].get<int>(), 1);  // cells per scatter invocation
   EXPECT_GE(scattered["sun_lattice_block_rows"].get<int>(), 1);  // and rows
+  // The refined cells' queue (the default, the most), the lattice's cells, those refined and
+  // those of them refined in place (none: the queue held them).
+  EXPECT_EQ(scattered["sun_lattice_refined_queue"].get<double>(),
+            65535.0 * 64.0);  // ocean::kReferenceMaxSunRefinedQueue
+  EXPECT_GT(scattered["sun_lattice_scattered_cells"].get<double>(), 0.0);
+  EXPECT_GE(scattered["sun_lattice_refined_cells"].get<double>(), 0.0);
+  EXPECT_LE(scattered["sun_lattice_refined_cells"].get<double>(),
+            scattered["sun_lattice_scattered_cells"].get<double>());
+  EXPECT_EQ(scattered["sun_lattice_refined_in_place"].get<double>(), 0.0);
   // The lattice as drawn: undoubled by default.
   EXPECT_EQ(scattered["sun_lattice_cells_per_wavelength"], 16.0);
   EXPECT_EQ(scattered["sun_lattice_cells"], 32);
@@ -270,7 +279,8 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   // The limits of ocean/method.hpp: past them, refused before anything renders.
   for (const std::string& past : std::vector<std::string>{
            "--sun-cells-per-wavelength 129", "--sun-max-cells-per-wavelength 129",
-           "--sun-cells 16385", "--sun-segment 16385", "--sun-segment -1", "--sun-block-rows 9"}) {
+           "--sun-cells 16385", "--sun-segment 16385", "--sun-segment -1", "--sun-block-rows 9",
+           "--sun-refined-queue -2", "--sun-refined-queue 4194241"}) {
     const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
     EXPECT_EQ(refused.status, 2) << past;
     EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;
@@ -612,15 +622,22 @@ TEST_F(Cli, ValidateRunsOnlyTheChosenCases) {
   EXPECT_EQ(methods[0]["terms"][0]["term"], "sky");
 }
 
+// A suite of two small cases, a and b (wind 5 and b_wind m/s), of the reference and full's sky
+// with one flicker frame: the suite of the tests of --time-limit, --no-exr and --resume.
+std::string two_case_suite(const std::string& name, const std::string& b_wind = "8") {
+  return R"({"suite": ")" + name + R"(", "base": {"image.width": 16, "image.height": 8,
+      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
+      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
+      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
+                {"name": "b", "set": {"ocean.wind_speed": )" +
+         b_wind + "}}]}";
+}
+
 // --time-limit begins no case that the longest case so far says would end past the limit: a
 // limit already spent begins none (the report is written, with no case), and --resume goes on
 // from there; a limit far off runs them all.
 TEST_F(Cli, ValidateTimeLimitBeginsNoCaseItCannotEnd) {
-  write("s.json", R"({"suite": "limit", "base": {"image.width": 16, "image.height": 8,
-      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
-      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
-      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
-                {"name": "b", "set": {"ocean.wind_speed": 8}}]})");
+  write("s.json", two_case_suite("limit"));
   const Result none = run("validate s.json -o out --time-limit 1e-6");
   ASSERT_EQ(none.status, 0) << none.err;
   EXPECT_NE(none.err.find("stopped before case a"), std::string::npos) << none.err;
@@ -642,11 +659,7 @@ TEST_F(Cli, ValidateTimeLimitBeginsNoCaseItCannotEnd) {
 // small: scripts/device/run); --resume keeps its cases, and a later run with EXRs keeps them
 // too while writing EXRs for the cases it renders.
 TEST_F(Cli, ValidateWithoutExrWritesPngsAlone) {
-  write("s.json", R"({"suite": "small", "base": {"image.width": 16, "image.height": 8,
-      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
-      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
-      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
-                {"name": "b", "set": {"ocean.wind_speed": 8}}]})");
+  write("s.json", two_case_suite("small"));
   const Result r = run("validate s.json -o out --case a --no-exr");
   ASSERT_EQ(r.status, 0) << r.err;
   int pngs = 0;
@@ -680,15 +693,7 @@ TEST_F(Cli, ValidateWithoutExrWritesPngsAlone) {
 // goes on; a case whose inputs changed is rendered again. A folder holding another suite's
 // report, or a file that is no report, is refused before anything is rendered.
 TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
-  const auto suite = [](const std::string& b_wind) {
-    return R"({"suite": "resume", "base": {"image.width": 16, "image.height": 8,
-      "camera.pitch": -20}, "methods": ["reference", "full"], "terms": ["sky"],
-      "flicker": {"frames": 1, "terms": ["sky"]}, "reference": {"pixel_samples": 4},
-      "cases": [{"name": "a", "set": {"ocean.wind_speed": 5}},
-                {"name": "b", "set": {"ocean.wind_speed": )" +
-           b_wind + "}}]}";
-  };
-  write("s.json", suite("8"));
+  write("s.json", two_case_suite("resume"));
   ASSERT_EQ(run("validate s.json -o out --case a").status, 0);
   const auto read_results = [&] { return read_json("out/results.json"); };
   const auto first = read_results();
@@ -738,7 +743,7 @@ TEST_F(Cli, ValidateResumesTheReportInItsFolder) {
   EXPECT_EQ(fs::last_write_time(a_image), a_time);
 
   // Case b's sea changed: b is rendered again, a is kept.
-  write("s.json", suite("12"));
+  write("s.json", two_case_suite("resume", "12"));
   ASSERT_EQ(run("validate s.json -o out --resume").status, 0);
   const auto changed = read_results();
   EXPECT_EQ(changed["cases"][0], first["cases"][0]);

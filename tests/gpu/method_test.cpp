@@ -590,23 +590,29 @@ struct SunRows {
   std::vector<std::array<int, 2>> row_cells;  // RenderStats::sun_lattice_row_cells
   int segment = 0;                            // RenderStats::sun_lattice_segment
   int block_rows = 0;                         // RenderStats::sun_lattice_block_rows
+  // RenderStats::sun_lattice_refined_queue, _scattered_cells, _refined_cells, _refined_in_place
+  double refined_queue = 0.0, cells = 0.0, refined_cells = 0.0, refined_in_place = 0.0;
 };
 SunRows reference_sun_rows(GlContext& context, const Scene& scene, double cells_per_wavelength,
                            int refine, int cap, bool float_atomics = true,
                            std::uint64_t batch = ocean::kReferenceMaxSunBatch, int segment = 0,
-                           int block_rows = 0) {
+                           int block_rows = 0, std::int64_t refined_queue = -1) {
   RendererOptions options = reference_sun_options(cells_per_wavelength, refine, cap);
   options.reference.measure_lattice = false;
   options.reference.sun_float_atomics = float_atomics;
   options.reference.sun_batch_invocations = batch;
   options.reference.sun_segment = segment;
   options.reference.sun_block_rows = block_rows;
+  options.reference.sun_refined_queue = refined_queue;
   Renderer renderer(context, scene, options);
   renderer.render();
-  return {green_row_totals(renderer.image()),     renderer.stats().resolved_rows,
-          renderer.stats().sun_lattice_refine,    renderer.stats().sun_lattice_float_atomics,
-          renderer.stats().sun_lattice_row_cells, renderer.stats().sun_lattice_segment,
-          renderer.stats().sun_lattice_block_rows};
+  const RenderStats& stats = renderer.stats();
+  return {green_row_totals(renderer.image()), stats.resolved_rows,
+          stats.sun_lattice_refine,           stats.sun_lattice_float_atomics,
+          stats.sun_lattice_row_cells,        stats.sun_lattice_segment,
+          stats.sun_lattice_block_rows,       stats.sun_lattice_refined_queue,
+          stats.sun_lattice_scattered_cells,  stats.sun_lattice_refined_cells,
+          stats.sun_lattice_refined_in_place};
 }
 
 // The scatter tests' view: validation_scene at 100 m, 24 x 16 pixels, waves from 2 m (so that
@@ -692,16 +698,16 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsBatches) {
 }
 
 // Each invocation of the scatter's cells' pass takes a segment of a block of rows of a
-// footprint's cells (ReferenceSampling::sun_segment, sun_block_rows): one row of as many cells as
-// llvmpipe's loop limit allows there, 4 rows of 64 on a GPU (stop 41: fewer corners evaluated
-// twice). Segments of 1, of a count that leaves most footprints' last segment part-filled (5, 3)
-// and of the most, one row or blocks of 4 and of 3 (most footprints' last block part-filled),
-// draw the same image to float rounding, with and without the refined cells; a segment asked
-// past llvmpipe's budget is held to it there (past it the shader's loops would end silently).
-// The rounding is the waves' arguments', not only the atomics' order (3e-7 a row: the batches'
-// test above): each segment's corners are given from its own first corner (footprint_origin,
-// stop 31), so another cut rounds them otherwise; measured 1.4-2.8e-4 a row on llvmpipe,
-// against the 1 % the lattice converges to.
+// footprint's cells (ReferenceSampling::sun_segment, sun_block_rows): 4 rows of 64 on a GPU (stop
+// 41: fewer corners evaluated twice), and on llvmpipe 4 rows of as many cells as its loop limit
+// allows for unrefined cells, the refined ones going to a pass of their own (stop 42). Segments of
+// 1, of a count that leaves most footprints' last segment part-filled (5, 3) and of the most, one
+// row or blocks of 4 and of 3 (most footprints' last block part-filled), draw the same image to
+// float rounding, with and without the refined cells; a segment asked past llvmpipe's budget is
+// held to it there (past it the shader's loops would end silently). The rounding is the waves'
+// arguments', not only the atomics' order (3e-7 a row: the batches' test above): each segment's
+// corners are given from its own first corner (footprint_origin, stop 31), so another cut rounds
+// them otherwise; measured 1.4-2.8e-4 a row on llvmpipe, against the 1 % the lattice converges to.
 TEST(OceanMethods, ScatteredSunDoesNotDependOnItsSegments) {
   auto context = test::make_test_context();
   const Scene scene = small_sun_scene();
@@ -711,8 +717,8 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsSegments) {
     std::printf("%d x %d subcells: %d rows of %d cells an invocation by default\n", refine, refine,
                 own.block_rows, own.segment);
     if (limited) {
-      EXPECT_GE(own.segment, refine > 1 ? 8 : 64) << "the budget's most (60 waves)";
-      EXPECT_EQ(own.block_rows, 1);
+      EXPECT_GE(own.segment, 64) << "the budget's most (60 waves)";
+      EXPECT_EQ(own.block_rows, 4);
     } else {
       EXPECT_EQ(own.segment, 64);
       EXPECT_EQ(own.block_rows, 4);
@@ -735,6 +741,58 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsSegments) {
       EXPECT_GE(change.rows, 8) << segment << " x " << block_rows;
       EXPECT_LT(change.worst, 1e-3) << segment << " x " << block_rows;
     }
+  }
+}
+
+// The refined cells (those near the mirror slope, cut into subcells) go to a pass of their own
+// through a queue (ReferenceSampling::sun_refined_queue, stop 42): the cells' pass runs in chunks
+// whose refined cells the queue holds, and a cell past a full queue is refined in place. Refined
+// in place throughout (0, as until stop 41), through the default queue, through a queue of 1,024
+// places (hundreds of chunks; on llvmpipe, whose invocations here may not refine in place, each
+// chunk's cells no more than the queue holds) and through a queue of 8 that overflows (segments
+// of 2 cells, small enough to refine in place on llvmpipe too) draw the same image to the
+// rounding of another cut of the segments (the test above). A coarse lattice (2 cells per
+// wavelength), so that a quarter of its cells are refined. The lattice's refined cells are counted
+// alike (a cell at the edge of the refinement's test may pass it in one cut and not another).
+TEST(OceanMethods, ScatteredSunDoesNotDependOnItsRefinedCellsQueue) {
+  auto context = test::make_test_context();
+  const Scene scene = small_sun_scene();
+  const auto run = [&](int segment, int block_rows, std::int64_t queue) {
+    return reference_sun_rows(*context, scene, 2, 4, 1024, true, ocean::kReferenceMaxSunBatch,
+                              segment, block_rows, queue);
+  };
+  const SunRows in_place = run(0, 0, 0);
+  EXPECT_EQ(in_place.refined_queue, 0.0);
+  EXPECT_GT(in_place.refined_cells, 0.0);
+  EXPECT_EQ(in_place.refined_in_place, in_place.refined_cells);
+  std::printf("refined in place: %.0f of %.0f cells, %d rows of %d cells an invocation\n",
+              in_place.refined_cells, in_place.cells, in_place.block_rows, in_place.segment);
+  struct Cut {
+    int segment, block_rows;
+    std::int64_t queue;
+    bool overflows;
+  };
+  for (const Cut& cut : {Cut{0, 0, -1, false}, Cut{0, 0, 1024, false}, Cut{2, 1, 8, true}}) {
+    const SunRows queued = run(cut.segment, cut.block_rows, cut.queue);
+    EXPECT_EQ(queued.refined_queue,
+              cut.queue < 0 ? double(ocean::kReferenceMaxSunRefinedQueue) : double(cut.queue));
+    EXPECT_EQ(queued.cells, in_place.cells);
+    EXPECT_NEAR(queued.refined_cells, in_place.refined_cells, 0.01 * in_place.refined_cells + 2.0);
+    if (cut.overflows) {
+      EXPECT_GT(queued.refined_in_place, 0.0);
+      EXPECT_LT(queued.refined_in_place, queued.refined_cells);
+    } else {
+      EXPECT_EQ(queued.refined_in_place, 0.0);
+    }
+    EXPECT_EQ(queued.resolved, in_place.resolved);
+    const RowChange change = worst_row_change(in_place.totals, queued.totals);
+    std::printf(
+        "  queue of %lld, %d rows of %d cells: %.0f refined, %.0f of them in place; %d "
+        "lit rows, worst difference %.2e\n",
+        static_cast<long long>(cut.queue), queued.block_rows, queued.segment, queued.refined_cells,
+        queued.refined_in_place, change.rows, change.worst);
+    EXPECT_GE(change.rows, 8);
+    EXPECT_LT(change.worst, 1e-3);
   }
 }
 

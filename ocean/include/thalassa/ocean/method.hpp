@@ -50,6 +50,10 @@ static_assert(std::uint64_t(kReferenceMaxSunCells) * kReferenceMaxSunCells <= kR
 // The most rows of cells one invocation of the scattered sun's cells' pass may take (its column
 // of corners is one longer: reference_sun_scatter.comp, REFERENCE_ROWS).
 inline constexpr int kReferenceMaxSunBlockRows = 8;
+// The most places of the scattered sun's refined cells' queue (reference_sun_scatter.comp, stop
+// 42; 16 bytes each, 64 MiB): the refined cells of one chunk of its cells' pass, one invocation
+// each of a dispatch of at most 65535 work groups of 64 (GL's least guaranteed work-group count).
+inline constexpr std::int64_t kReferenceMaxSunRefinedQueue = std::int64_t(65535) * 64;
 // The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
 // at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
 inline constexpr int kReferenceMaxPixelSamples = 16384;

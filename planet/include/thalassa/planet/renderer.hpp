@@ -75,6 +75,14 @@ struct RenderStats {
   int sun_lattice_refine = 0;
   int sun_lattice_segment = 0;  // the cells of a row per invocation of the scatter, as run
   int sun_lattice_block_rows = 0;  // and its rows of cells per invocation
+  // Its refined cells' queue as run (places per chunk of the cells' pass; 0: every refined cell
+  // refined in place; ReferenceSampling::sun_refined_queue), and the lattice's cells, those of
+  // them refined (cut into sun_lattice_refine^2 subcells) and those refined in place because
+  // the queue was full.
+  double sun_lattice_refined_queue = 0.0;
+  double sun_lattice_scattered_cells = 0.0;
+  double sun_lattice_refined_cells = 0.0;
+  double sun_lattice_refined_in_place = 0.0;
   // The lattice's change per image row (top first; NaN in the rows it does not count); empty
   // when the lattice was not measured.
   std::vector<double> sun_lattice_row_changes;
@@ -228,10 +236,15 @@ struct ReferenceSampling {
   // rounding (OceanMethods.ScatteredSunDoesNotDependOnItsSegments); its time does.
   int sun_segment = 0;
   // Scattered: the rows of cells each invocation of the lattice's cells' pass takes, in [0, 8];
-  // 0 (the default): 1 on llvmpipe, 4 on other renderers (OceanNodeOptions::
+  // 0 (the default): 4, held on llvmpipe to what its loop limit allows (OceanNodeOptions::
   // reference_sun_block_rows). Like sun_segment, the image does not depend on it but for float
   // rounding; its time does.
   int sun_block_rows = 0;
+  // Scattered: the places of the queue that takes the lattice's refined cells to a pass of their
+  // own, in [-1, 4194240]; -1 (the default): 4,194,240, the most; 0: each refined where its
+  // invocation meets it, as until stop 42 (OceanNodeOptions::reference_sun_refined_queue). Like
+  // sun_segment, the image does not depend on it but for float rounding; its time does.
+  std::int64_t sun_refined_queue = -1;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,
   // when this render asks for that lattice without measuring it (ocean/scattered_sun_cache.hpp;
