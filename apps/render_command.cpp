@@ -166,7 +166,8 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
           "their own (-1: the most, 4194240; 0: none, each refined where its invocation meets it); "
           "the same image to float rounding, for timing (--stats "
           "sun_lattice_refined_queue, sun_lattice_refined_cells, "
-          "sun_lattice_refined_in_place, sun_lattice_ms)")
+          "sun_lattice_refined_in_place, sun_lattice_ms); each chunk of cells it serves is "
+          "two dispatches, so a queue of a few places makes very many")
       ->check(CLI::Range(std::int64_t(-1), ocean::kReferenceMaxSunRefinedQueue))
       ->capture_default_str();
   render->add_flag("--sun-swap-atomics", args.sun_swap_atomics,

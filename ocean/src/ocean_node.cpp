@@ -214,12 +214,12 @@ constexpr GLuint kScatterFootprintBinding = 8;
 constexpr GLuint kScatterFootprintStartBinding = 9;
 constexpr GLuint kGridDepthUnit = 14;
 
-// Per image row (top first), the cells along x and y of a scattered lattice's footprint with the
-// most in that row (OceanNode::run_scatter).
 // The scatter's programs: the footprints' pass, the cells' and the refined cells'
 // (reference_sun_scatter.comp).
 using ScatterPrograms = std::array<GLuint, 3>;
 
+// Per image row (top first), the cells along x and y of a scattered lattice's footprint with the
+// most in that row (OceanNode::run_scatter).
 struct ScatterRowCells {
   std::vector<double> x, y;
 };
@@ -1060,7 +1060,8 @@ class OceanNode final : public gl::Node {
                            bool timed) {
     const double ms =
         scatter_checked(programs, buffer, spacing, cap, &lattice_row_cells_, timed, finer_sums_);
-    // Its cells and refined cells (the barrier before its sums were read back covers the header).
+    // Its cells, and its refined cells and those refined in place, which the queue's header
+    // counts (the barrier before its sums were read back covers the header too).
     std::array<GLuint, kScatterRefinedHeader> header{};
     glGetNamedBufferSubData(refined_buffer_.get(), 0, sizeof header, header.data());
     lattice_scattered_cells_ = scattered_cells_;
@@ -1146,8 +1147,10 @@ class OceanNode final : public gl::Node {
   }
 
   // One lattice (spacing m, at most cap^2 cells per pixel's footprint) into buffer, cleared
-  // first: the footprints' pass (programs[0]), then the cells' (programs[1]); with row_cells, the
-  // cells along x and y of each image row's footprint with the most into it.
+  // first: the footprints' pass (programs[0]), then the cells' (programs[1]) in chunks, each
+  // followed, where there is a queue, by the refined cells' pass (programs[2]) over the cells the
+  // chunk queued; with row_cells, the cells along x and y of each image row's footprint with the
+  // most into it.
   void run_scatter(const ScatterPrograms& programs, GLuint buffer, double spacing, int cap,
                    ScatterRowCells* row_cells = nullptr) {
     const float zero = 0.0f;
@@ -1171,7 +1174,8 @@ class OceanNode final : public gl::Node {
       for (std::uint64_t start = 0; start < invocations; start += chunk) {
         const std::uint64_t count = std::min(chunk, invocations - start);
         if (refine) {
-          // Writes after the last refined cells' pass read the queue (GL orders them).
+          // After the last refined cells' pass has read the queue's header: the barrier that
+          // follows that pass (GL_BUFFER_UPDATE_BARRIER_BIT) orders this write after its reads.
           glNamedBufferSubData(refined_buffer_.get(), 0, 4 * sizeof(GLuint), empty_queue.data());
         }
         glUseProgram(program);
@@ -1395,7 +1399,7 @@ class OceanNode final : public gl::Node {
   std::size_t refined_buffer_bytes_ = 0;
   std::uint64_t scatter_chunk_ = 0;
   // The cells of the lattice run last (run_scatter); of the finer lattice, and its refined
-  // cells and those of them refined in place (the queue full).
+  // cells and those of them refined in place (all with no queue, else those past a full one).
   double scattered_cells_ = 0.0;
   double lattice_scattered_cells_ = 0.0, lattice_refined_cells_ = 0.0,
          lattice_refined_in_place_ = 0.0;

@@ -96,12 +96,14 @@
 // subcells with 60 waves). The CPU (ocean_node.cpp, scatter_iterations) sizes the segments so
 // that an invocation's worst case stays within half that budget there. An invocation evaluates
 // every corner of its cells, (rows + 1)(segment + 1) for rows x segment cells. Until stop 41 the
-// worst case was every cell refined in place: 2 to 4 cells at 60 to 120 waves with 8 x 8
-// subcells, a row at a time, 2.5 to 3.0 corners a cell, on every renderer. Stop 41 gave a
-// renderer without the limit (a GPU) blocks of 4 rows of 64 cells (kScatterFreeBlockRows,
+// worst case was every cell refined in place: with 8 x 8 subcells, 4 cells at 60 waves and 2 at
+// 120, a row at a time, 2.5 and 3.0 corners a cell, on every renderer. Stop 41 gave a renderer
+// without the limit (a GPU) blocks of 4 rows of 64 cells (kScatterFreeBlockRows,
 // kScatterFreeSegment; 1.27 a cell). Since stop 42 the refined cells go to a pass of their own
-// (the refined cells' queue, below), so the worst case on llvmpipe is every cell unrefined, and
-// it takes blocks too: 4 rows of 64 cells at 60 waves, of 32 at 120.
+// (the refined cells' queue, below). Where a cell refined in place would not fit llvmpipe's
+// budget beside a block's (the suite's 8 x 8 subcells with 60 waves or more), its worst case is
+// then every cell unrefined, and it takes blocks too: 4 rows of 64 cells at 60 waves, of 32 at
+// 120.
 layout(local_size_x = 64) in;
 
 // Rows of cells per invocation of pass 2 (the CPU's define: ocean_node.cpp,
@@ -423,10 +425,12 @@ const float REFERENCE_REFINE_SIGMAS = 4.0;
 // puts each refined cell's place into this queue (the footprint, the cell's column and row) and
 // the refined cells' pass (REFERENCE_REFINE_PASS) refines one cell an invocation. The CPU
 // dispatches the cells' pass in chunks and the refined cells' pass after each, indirectly from
-// the header: [0] its work groups, [1], [2] 1, [3] the cells queued in the chunk (the places past
-// refined_capacity are refined in place: the queue is full), [4] the lattice's refined cells, [5]
-// those refined in place. refined_capacity 0: every refined cell is refined in place, as before
-// stop 42.
+// the header: [0] its work groups, [1], [2] 1, [3] the refined cells met in the chunk (those
+// past refined_capacity are refined in place: the queue is full), [4] the lattice's refined
+// cells, [5] those refined in place. refined_capacity 0: every refined cell is refined in place,
+// as before stop 42. [3] counts at most a chunk's cells (the CPU's scatter_chunk_, under 2^27);
+// [4] and [5] are the statistics' alone and would wrap past 2^32 refined cells in one lattice
+// (2^34 cells a quarter refined, far past the suite's 2.4e7 at 0.07 %).
 layout(std430, binding = 10) coherent buffer ReferenceRefinedCells {
   uint refined_header[8];
   uvec4 refined_cells[];
@@ -617,7 +621,9 @@ void main() {
 // (q.. the footprint's corners from its q00). From row j's corner at u0, row j + r's at u0 + du
 // is r (q01 + u0 twist) / ky + du edge_r, with twist = q11 - q10 - q01 and edge_r = edge_0 + r
 // twist / ky its edge along u. The refined cells' pass (REFERENCE_REFINE_PASS) starts the block
-// of its cell's place again, so that its corners are the same floats as the cells' pass's.
+// of its cell's place again with the same expressions, so that its corners are the cells'
+// pass's to the float's rounding (two programs may contract them into fused multiply-adds
+// otherwise; a subcell's edges then miss its neighbour's by about 1e-7 of the block).
 struct Block {
   int kx, ky;               // the footprint's cells along u and v
   int first, j;             // the block's first column and row of cells

@@ -77,8 +77,8 @@ struct RenderStats {
   int sun_lattice_block_rows = 0;  // and its rows of cells per invocation
   // Its refined cells' queue as run (places per chunk of the cells' pass; 0: every refined cell
   // refined in place; ReferenceSampling::sun_refined_queue), and the lattice's cells, those of
-  // them refined (cut into sun_lattice_refine^2 subcells) and those refined in place because
-  // the queue was full.
+  // them refined (cut into sun_lattice_refine^2 subcells) and those refined in place (all of
+  // them with no queue, else those past a full queue).
   double sun_lattice_refined_queue = 0.0;
   double sun_lattice_scattered_cells = 0.0;
   double sun_lattice_refined_cells = 0.0;
@@ -242,8 +242,9 @@ struct ReferenceSampling {
   int sun_block_rows = 0;
   // Scattered: the places of the queue that takes the lattice's refined cells to a pass of their
   // own, in [-1, 4194240]; -1 (the default): 4,194,240, the most; 0: each refined where its
-  // invocation meets it, as until stop 42 (OceanNodeOptions::reference_sun_refined_queue). Like
-  // sun_segment, the image does not depend on it but for float rounding; its time does.
+  // invocation meets it, as before stop 42 (OceanNodeOptions::reference_sun_refined_queue). Like
+  // sun_segment, the image does not depend on it but for float rounding; its time does. A queue
+  // of a few places (for tests) runs the cells' pass in that many more dispatches.
   std::int64_t sun_refined_queue = -1;
   // Scattered: where this render's lattice is kept, and where a lattice another render scattered
   // for the same view, time, sea and first sample is taken from instead of scattering it again,

@@ -68,25 +68,28 @@ struct OceanNodeOptions {
   // With the scatter: the cells of a row each invocation of its cells' pass takes (its
   // segment; ReferenceSampling::sun_segment), [0, kReferenceMaxSunCells]. 0: the most that
   // llvmpipe's loop limit allows where the renderer has it (reference_sun_scatter.comp, "Why
-  // segments"; 64 cells at 60 waves and 32 at 120 in blocks of 4 rows, the refined cells
-  // queued; 2 to 4 refined in place at 8 x 8 subcells), kScatterFreeSegment where it has none.
-  // Else as asked, held to that most on llvmpipe. The image does not depend on it
-  // but for float rounding; the time does, since an invocation evaluates every corner of its
-  // cells, (block rows + 1)(segment + 1) for block rows x segment cells.
+  // segments"; at 8 x 8 subcells, 64 cells at 60 waves and 32 at 120 in blocks of 4 rows with
+  // the refined cells queued; refined in place, 1 cell in blocks of 4 rows at 60 waves and of 3
+  // at 120), kScatterFreeSegment where it has none. Else as asked, held to that most on
+  // llvmpipe. The image does not depend on it but for float rounding; the time does, since an
+  // invocation evaluates every corner of its cells, (block rows + 1)(segment + 1) for block rows
+  // x segment cells.
   int reference_sun_segment = 0;
   // With the scatter: the rows of cells each invocation of its cells' pass takes (a column of
   // block_rows + 1 corners serves block_rows cells), [0, kReferenceMaxSunBlockRows]. 0:
   // kScatterFreeBlockRows (4). Else as asked. Held on llvmpipe to what one column's worst case
-  // fits. Like the segment, it changes
-  // only the float rounding and the time.
+  // fits. Like the segment, it changes only the float rounding and the time.
   int reference_sun_block_rows = 0;
   // With the scatter: the places of its refined cells' queue (reference_sun_scatter.comp, stop
   // 42; ReferenceSampling::sun_refined_queue), [-1, kReferenceMaxSunRefinedQueue]. -1: the
   // default, the most (4,194,240 places, 64 MiB). 0: every refined cell is refined in place, by the
-  // invocation that meets it, as until stop 41. Else the cells' pass runs in chunks whose refined
-  // cells the queue holds (on llvmpipe always: its loop budget then sizes the invocations for
-  // unrefined cells), and a pass of their own refines them; a cell past a full queue is refined in
-  // place. Like the segment, it changes only the float rounding and the time.
+  // invocation that meets it, as before stop 42. Else the cells' pass runs in chunks, each
+  // followed by a pass of their own for the refined cells it queued; a cell past a full queue is
+  // refined in place. A chunk takes 16 times the queue's cells, or, on llvmpipe where a refined
+  // cell would not fit its loop budget beside its invocation's block (then sized for unrefined
+  // cells), no more cells than the queue holds, so that none is refined in place. Each chunk is
+  // two dispatches: a queue of a few places (for tests) makes millions of them. Like the segment,
+  // it changes only the float rounding and the time.
   std::int64_t reference_sun_refined_queue = -1;
   // With the scatter: the most invocations per batch of its cells' pass (ReferenceSampling::
   // sun_batch_invocations), [1, kReferenceMaxSunBatch].
