@@ -23,12 +23,32 @@ void check_error(const char* where) {
       case GL_OUT_OF_MEMORY:
         errors += " GL_OUT_OF_MEMORY";
         break;
+      case GL_CONTEXT_LOST:
+        errors += " GL_CONTEXT_LOST";
+        break;
       default:
         errors += " GL error " + std::to_string(error);
     }
     if (errors.size() > 400) break;  // a lost context can report errors forever
   }
+  const std::string reset = context_reset();
+  if (!reset.empty()) errors += " (the context was reset, " + reset + ")";
   if (!errors.empty()) throw GlError(std::string(where) + ":" + errors);
+}
+
+std::string context_reset() {
+  switch (const GLenum status = glGetGraphicsResetStatus()) {
+    case GL_NO_ERROR:
+      return "";
+    case GL_GUILTY_CONTEXT_RESET:
+      return "GL_GUILTY_CONTEXT_RESET: a command of this context made the GPU reset";
+    case GL_INNOCENT_CONTEXT_RESET:
+      return "GL_INNOCENT_CONTEXT_RESET: the GPU was reset by another context's work";
+    case GL_UNKNOWN_CONTEXT_RESET:
+      return "GL_UNKNOWN_CONTEXT_RESET: the GPU was reset, cause unknown";
+    default:
+      return "reset status " + std::to_string(status);
+  }
 }
 
 void delete_buffer(GLuint name) { glDeleteBuffers(1, &name); }

@@ -1131,13 +1131,22 @@ class OceanNode final : public gl::Node {
       std::string fault = scattered_sun_sums_fault(sums, scatter_width_, scatter_height_);
       if (fault.empty()) fault = scattered_sun_coverage_fault(sums, scatter_sea_solid_angle_);
       if (fault.empty()) return ms;
+      // A context the GPU reset (where it is told: gl::context_reset) cannot scatter again.
+      const std::string reset = gl::context_reset();
+      if (!reset.empty())
+        throw gl::GlError("the reference's scattered sun: the GPU reset the OpenGL context (" +
+                          reset + ") and the lattice holds what no scatter writes: " + fault);
       ++rescatters_;
       scatter_fault_ = fault;
       if (attempt >= kScatterRetries) {
-        const GLenum reset = glGetGraphicsResetStatus();
         const GLenum error = glGetError();
+        GLint strategy = GL_NO_RESET_NOTIFICATION;
+        glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
         char codes[96];
-        std::snprintf(codes, sizeof codes, " (GL reset status 0x%04X, GL error 0x%04X)", reset,
+        std::snprintf(codes, sizeof codes, " (%s, GL error 0x%04X)",
+                      strategy == GL_LOSE_CONTEXT_ON_RESET
+                          ? "no GPU reset reported"
+                          : "the context is not told of GPU resets",
                       error);
         throw gl::GlError("the reference's scattered sun: the lattice scattered " +
                           std::to_string(attempt + 1) +

@@ -1067,7 +1067,7 @@ TEST_F(Cli, InfoPrintsBackendAndCapabilities) {
   std::stringstream text;
   text << in.rdbuf();
   for (const char* fragment : {"backend:", "GL version:", "GL renderer:", "compute shaders",
-                               "clip control", "anisotropic filtering"})
+                               "clip control", "context loss reported", "anisotropic filtering"})
     EXPECT_NE(text.str().find(fragment), std::string::npos) << fragment;
 }
 

@@ -4,7 +4,9 @@
 
 #include <glad/gl.h>
 
+#include <algorithm>
 #include <cstdlib>
+#include <string>
 
 #include "test_support.hpp"
 #include "thalassa/engine/gl/objects.hpp"
@@ -25,6 +27,42 @@ TEST(Context, BackendIsOpenGl45CoreWithEverythingTheEngineNeeds) {
   EXPECT_GE(major * 10 + minor, 45);
   EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
   EXPECT_FALSE(info.renderer.empty());
+}
+
+// An EGL context asks to be told of GPU resets (LOSE_CONTEXT_ON_RESET), so that a GPU fault reads
+// as a lost context (gl::context_reset, gl::check_error) rather than leaving it running on with
+// undefined reads (the H200's scattered sun, docs/validation.md stop 40); it falls back to a
+// context without where the driver does not offer it. Mesa's llvmpipe offers it (22.3, measured);
+// OSMesa makes no such context. Its description and `thalassa info` say which it got, with or
+// without a debug context. A healthy context reports no reset.
+TEST(Context, EglIsToldOfGpuResetsWhereTheDriverOffersIt) {
+  for (const bool debug : {false, true}) {
+    if (debug) setenv("THALASSA_GL_DEBUG", "1", 1);
+    auto context = test::make_test_context();
+    if (debug) unsetenv("THALASSA_GL_DEBUG");
+    GLint strategy = 0;
+    glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+    const bool told = strategy == GL_LOSE_CONTEXT_ON_RESET;
+    if (!told) {
+      EXPECT_EQ(strategy, GL_NO_RESET_NOTIFICATION);
+    }
+    EXPECT_EQ(context->description().find("told of GPU resets") != std::string::npos, told)
+        << context->description();
+    const GlInfo info = query_gl_info();
+    const auto reported =
+        std::find_if(info.capabilities.begin(), info.capabilities.end(),
+                     [](const auto& c) { return c.first == "context loss reported (GPU resets)"; });
+    ASSERT_NE(reported, info.capabilities.end());
+    EXPECT_EQ(reported->second, told ? "yes" : "no");
+    if (context->backend() == Backend::Egl && info.renderer.find("llvmpipe") != std::string::npos) {
+      EXPECT_TRUE(told) << "debug " << debug;
+    }
+    if (context->backend() == Backend::OsMesa) {
+      EXPECT_FALSE(told);
+    }
+    EXPECT_EQ(gl::context_reset(), "");
+    EXPECT_NO_THROW(gl::check_error("a healthy context"));
+  }
 }
 
 TEST(Context, TwoContextsInOneProcess) {

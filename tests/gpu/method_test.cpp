@@ -787,7 +787,9 @@ TEST(OceanMethods, ScatteredSunDoesNotDependOnItsRefinedCellsQueue) {
     if (cut.overflow == Overflow::never) {
       EXPECT_EQ(queued.refined_in_place, 0.0);
     } else {
-      if (cut.overflow == Overflow::must) EXPECT_GT(queued.refined_in_place, 0.0);
+      if (cut.overflow == Overflow::must) {
+        EXPECT_GT(queued.refined_in_place, 0.0);
+      }
       EXPECT_LT(queued.refined_in_place, queued.refined_cells) << "the queue took none";
     }
     EXPECT_EQ(queued.resolved, in_place.resolved);

@@ -127,16 +127,35 @@ std::unique_ptr<GlContext> try_display(EGLDisplay display, const std::string& pl
     if (!no_config) return fail("no OpenGL config");
     config = nullptr;  // EGL_NO_CONFIG_KHR
   }
-  std::vector<EGLint> context_attribs = {
-      EGL_CONTEXT_MAJOR_VERSION,       4,
-      EGL_CONTEXT_MINOR_VERSION,       5,
-      EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-  if (options.debug) {
-    context_attribs.push_back(EGL_CONTEXT_OPENGL_DEBUG);
-    context_attribs.push_back(EGL_TRUE);
+  // With EGL 1.5, first a context told of GPU resets (LOSE_CONTEXT_ON_RESET, without robust
+  // buffer access and its bounds checks): a GPU fault then reads back as a lost context
+  // (gl::context_reset) instead of leaving it running on with its reads undefined, as the H200's
+  // scattered sun may have been (docs/validation.md, stop 40). Where the driver does not offer
+  // it (llvmpipe), the same context without.
+  const bool egl15 = major > 1 || (major == 1 && minor >= 5);
+  EGLContext context = EGL_NO_CONTEXT;
+  bool reset_notification = false;
+  for (const bool notify : {true, false}) {
+    if (notify && !egl15) continue;
+    std::vector<EGLint> context_attribs = {
+        EGL_CONTEXT_MAJOR_VERSION,       4,
+        EGL_CONTEXT_MINOR_VERSION,       5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+    if (options.debug) {
+      context_attribs.push_back(EGL_CONTEXT_OPENGL_DEBUG);
+      context_attribs.push_back(EGL_TRUE);
+    }
+    if (notify) {
+      context_attribs.push_back(EGL_CONTEXT_OPENGL_RESET_NOTIFICATION_STRATEGY);
+      context_attribs.push_back(EGL_LOSE_CONTEXT_ON_RESET);
+    }
+    context_attribs.push_back(EGL_NONE);
+    context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs.data());
+    if (context != EGL_NO_CONTEXT) {
+      reset_notification = notify;
+      break;
+    }
   }
-  context_attribs.push_back(EGL_NONE);
-  EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs.data());
   if (context == EGL_NO_CONTEXT) return fail("no OpenGL 4.5 core context");
 
   EGLSurface surface = EGL_NO_SURFACE;
@@ -159,7 +178,8 @@ std::unique_ptr<GlContext> try_display(EGLDisplay display, const std::string& pl
   }
   const char* vendor = eglQueryString(display, EGL_VENDOR);
   std::string description = "EGL " + std::to_string(major) + "." + std::to_string(minor) + " " +
-                            platform + " (" + (vendor ? vendor : "unknown vendor") + ")";
+                            platform + " (" + (vendor ? vendor : "unknown vendor") + ")" +
+                            (reset_notification ? ", told of GPU resets" : "");
   auto result = std::make_unique<EglContext>(display, context, surface, description);
   load_gl_functions(reinterpret_cast<GlProcAddressFn>(&eglGetProcAddress), "egl", options.debug);
   return result;

@@ -15,6 +15,7 @@ struct GlInfo {
   // The capabilities the engine relies on, each with "yes"/"no" or a number, in a fixed order:
   // core profile 4.5, float render targets, compute shaders, clip control (reversed-Z), fp64,
   // timer queries, float atomics (optional: the reference's sun scatter uses them where present),
+  // context loss reported (optional: a GPU reset reads as a lost context, gl::context_reset),
   // anisotropic filtering (max), max texture size, max array texture layers, max viewport.
   std::vector<std::pair<std::string, std::string>> capabilities;
   // Names of required capabilities that are missing (empty when the engine can run).

@@ -18,7 +18,16 @@ class GlError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Throws GlError naming `where` if glGetError reports an error (draining all pending errors).
+// Throws GlError naming `where` if glGetError reports an error (draining all pending errors) or
+// the context was reset (context_reset).
 void check_error(const char* where);
+
+// Empty while the context has not been reset; else what glGetGraphicsResetStatus says, e.g.
+// "GL_GUILTY_CONTEXT_RESET: a command of this context made the GPU reset". Only a context made
+// with a reset notification strategy (LOSE_CONTEXT_ON_RESET: thalassa's EGL contexts, where the
+// driver offers it; `thalassa info`'s "context loss reported") is told: in any other, a GPU
+// fault leaves the context running on, its reads undefined. After a reset every GL call of the
+// context is void: it must be made again.
+std::string context_reset();
 
 }  // namespace thalassa::gl
