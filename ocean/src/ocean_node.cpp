@@ -1183,8 +1183,10 @@ class OceanNode final : public gl::Node {
       for (std::uint64_t start = 0; start < invocations; start += chunk) {
         const std::uint64_t count = std::min(chunk, invocations - start);
         if (refine) {
-          // After the last refined cells' pass has read the queue's header: the barrier that
-          // follows that pass (GL_BUFFER_UPDATE_BARRIER_BIT) orders this write after its reads.
+          // The header reset for this chunk: the barrier after the last chunk's refined cells'
+          // pass (GL_BUFFER_UPDATE_BARRIER_BIT) orders it after the cells' pass's atomic writes
+          // to the header, and GL's command order after the refined pass's reads of it (barriers
+          // order shaders' writes, not their reads).
           glNamedBufferSubData(refined_buffer_.get(), 0, 4 * sizeof(GLuint), empty_queue.data());
         }
         glUseProgram(program);

@@ -131,7 +131,7 @@ std::unique_ptr<GlContext> try_display(EGLDisplay display, const std::string& pl
   // buffer access and its bounds checks): a GPU fault then reads back as a lost context
   // (gl::context_reset) instead of leaving it running on with its reads undefined, as the H200's
   // scattered sun may have been (docs/validation.md, stop 40). Where the driver does not offer
-  // it (llvmpipe), the same context without.
+  // it, the same context without (Mesa 22.3's llvmpipe offers it).
   const bool egl15 = major > 1 || (major == 1 && minor >= 5);
   EGLContext context = EGL_NO_CONTEXT;
   bool reset_notification = false;
