@@ -34,7 +34,10 @@ class GlfwContext final : public GlContext {
   }
   Backend backend() const override { return Backend::Glfw; }
   std::string description() const override {
-    return std::string("GLFW ") + glfwGetVersionString() + " window";
+    return std::string("GLFW ") + glfwGetVersionString() + " window" +
+           (glfwGetWindowAttrib(window_, GLFW_CONTEXT_ROBUSTNESS) == GLFW_LOSE_CONTEXT_ON_RESET
+                ? ", told of GPU resets"
+                : "");
   }
   GlProcAddressFn proc_address() const override {
     return reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress);
@@ -73,8 +76,16 @@ std::unique_ptr<GlContext> create_glfw_context(const ContextOptions& options) {
   glfwWindowHint(GLFW_OPENGL_DEBUG_CONTEXT, options.debug ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_VISIBLE, options.visible ? GLFW_TRUE : GLFW_FALSE);
   glfwWindowHint(GLFW_RESIZABLE, GLFW_FALSE);
-  GLFWwindow* window =
-      glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+  // First a context told of GPU resets, as EGL's (egl_context.cpp: a GPU fault then reads as a
+  // lost context, gl::context_reset), then, where the driver refuses it, one without.
+  GLFWwindow* window = nullptr;
+  for (const int robustness : {GLFW_LOSE_CONTEXT_ON_RESET, GLFW_NO_ROBUSTNESS}) {
+    glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, robustness);
+    window =
+        glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
+    if (window != nullptr) break;
+  }
+  glfwWindowHint(GLFW_CONTEXT_ROBUSTNESS, GLFW_NO_ROBUSTNESS);
   if (window == nullptr) {
     if (--glfw_users == 0) glfwTerminate();
     throw ContextError("glfw: no OpenGL 4.5 core window: " + last_glfw_error());
