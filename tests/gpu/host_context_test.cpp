@@ -99,6 +99,11 @@ TEST(HostContext, RendersIntoTheHostsFramebuffer) {
     RendererOptions options;
     options.method = ocean::OceanMethod::reference;
     options.reference.min_samples = options.reference.max_samples = 2;
+    // A coarse lattice for its sun, unmeasured: the host's state is the point, not the sun (the
+    // default lattice took this test 2-3 minutes on llvmpipe).
+    options.reference.sun_cells = 16;
+    options.reference.sun_cells_per_wavelength = 2.0;
+    options.reference.measure_lattice = false;
     Renderer reference(*attached, scene, options);
     reference.render();
     expect_host_state("after a reference render()");
