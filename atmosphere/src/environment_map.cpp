@@ -13,6 +13,8 @@
 #include <string>
 #include <utility>
 
+#include "gauss_legendre.hpp"
+
 namespace thalassa::atmosphere {
 namespace {
 
@@ -71,32 +73,6 @@ Vec3 direction_of(double theta, double alpha) {
   return {s * std::sin(alpha), s * std::cos(alpha), std::cos(theta)};
 }
 
-// Nodes and weights of the n-point Gauss-Legendre rule on [0, 1]: Newton's method on P_n (the
-// three-term recurrence), started at Tricomi's estimate; weights 2 / ((1 - x^2) P_n'(x)^2) on
-// [-1, 1] (Abramowitz & Stegun 25.4.29), halved for [0, 1].
-void gauss_legendre_unit(int n, std::vector<double>& nodes, std::vector<double>& weights) {
-  nodes.resize(n);
-  weights.resize(n);
-  for (int i = 0; i < n; ++i) {
-    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
-    double derivative = 1.0;
-    for (int iteration = 0; iteration < 100; ++iteration) {
-      double p_prev = 1.0, p = x;
-      for (int k = 2; k <= n; ++k) {
-        const double next = ((2.0 * k - 1.0) * x * p - (k - 1.0) * p_prev) / k;
-        p_prev = p;
-        p = next;
-      }
-      derivative = n * (x * p - p_prev) / (x * x - 1.0);
-      const double dx = p / derivative;
-      x -= dx;
-      if (std::abs(dx) < 1e-16) break;
-    }
-    nodes[i] = 0.5 * (x + 1.0);
-    weights[i] = 1.0 / ((1.0 - x * x) * derivative * derivative);
-  }
-}
-
 }  // namespace
 
 // ---- Free functions ----------------------------------------------------------------------
@@ -148,11 +124,14 @@ double mean_fresnel_reflectance(double n) {
     throw std::invalid_argument(
         "thalassa::atmosphere::mean_fresnel_reflectance: the refractive index must be finite "
         "and > 1");
+  // Over mu in [0, 1]: the rule on [-1, 1] moved there, mu = (x + 1) / 2 with half the weight.
   std::vector<double> nodes, weights;
-  gauss_legendre_unit(kFresnelQuadraturePoints, nodes, weights);
+  detail::gauss_legendre(kFresnelQuadraturePoints, nodes, weights);
   double sum = 0.0;
-  for (int i = 0; i < kFresnelQuadraturePoints; ++i)
-    sum += weights[i] * fresnel_reflectance(nodes[i], n) * nodes[i];
+  for (int i = 0; i < kFresnelQuadraturePoints; ++i) {
+    const double mu = 0.5 * (nodes[i] + 1.0);
+    sum += 0.5 * weights[i] * fresnel_reflectance(mu, n) * mu;
+  }
   return 2.0 * sum;
 }
 

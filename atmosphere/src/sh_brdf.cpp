@@ -11,6 +11,8 @@
 #include <string>
 #include <utility>
 
+#include "gauss_legendre.hpp"
+
 namespace thalassa::sh {
 namespace {
 
@@ -19,8 +21,6 @@ constexpr double kPi = std::numbers::pi;
 // Newton's iteration on P_n for the Gauss-Legendre nodes converges quadratically from the
 // asymptotic initial guess; it stops when a step is below this (absolute, in cos theta), then
 // takes one more step.
-constexpr double kGaussNodeTolerance = 1e-15;
-constexpr int kGaussMaxIterations = 100;
 
 // |C + V| below this (V within ~1e-12 rad of -C) has no normal that mirrors V into C.
 constexpr double kMinHalfVectorLength = 1e-12;
@@ -63,35 +63,6 @@ Vec3 transpose_times(const Mat3& r, const Vec3& d) {
 Mat3 rotation_y(double alpha) {
   const double c = std::cos(alpha), s = std::sin(alpha);
   return {c, 0.0, s, 0.0, 1.0, 0.0, -s, 0.0, c};
-}
-
-// Gauss-Legendre nodes (descending, in (-1, 1)) and weights on [-1, 1], n points: Newton on
-// P_n from x0 = cos(pi (k - 1/4) / (n + 1/2)) (Abramowitz & Stegun 22.16.6's asymptotic
-// zeros), P_n and P_n' by the three-term recurrence; w = 2 / ((1 - x^2) P_n'(x)^2)
-// (A&S 25.4.29). Exact for polynomials of degree < 2n.
-void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weights) {
-  nodes.assign(static_cast<std::size_t>(n), 0.0);
-  weights.assign(static_cast<std::size_t>(n), 0.0);
-  for (int k = 0; k < n; ++k) {
-    double x = std::cos(kPi * (k + 0.75) / (n + 0.5));
-    double derivative = 1.0;
-    for (int iteration = 0; iteration < kGaussMaxIterations; ++iteration) {
-      double p = 1.0, p_prev = 0.0;
-      for (int j = 1; j <= n; ++j) {
-        const double next = ((2.0 * j - 1.0) * x * p - (j - 1.0) * p_prev) / j;
-        p_prev = p;
-        p = next;
-      }
-      derivative = n * (x * p - p_prev) / (x * x - 1.0);
-      const double step = p / derivative;
-      x -= step;
-      if (std::abs(step) < kGaussNodeTolerance) {
-        break;
-      }
-    }
-    nodes[static_cast<std::size_t>(k)] = x;
-    weights[static_cast<std::size_t>(k)] = 2.0 / ((1.0 - x * x) * derivative * derivative);
-  }
 }
 
 // The Legendre triangle P̄_lm(t) (toolkit normalisation) for every node t, order `order`:
@@ -198,8 +169,8 @@ BrdfTable::BrdfTable(const BrdfGrid& grid) : grid_(grid) {
   check_count(grid.theta_i_count, "BrdfTable", "theta_i_count");
   check_count(grid.theta_o_count, "BrdfTable", "theta_o_count");
   check_count(grid.phi_count, "BrdfTable", "phi_count");
-  gauss_legendre(grid.theta_i_count, cos_i_, weight_i_);
-  gauss_legendre(grid.theta_o_count, cos_o_, weight_o_);
+  atmosphere::detail::gauss_legendre(grid.theta_i_count, cos_i_, weight_i_);
+  atmosphere::detail::gauss_legendre(grid.theta_o_count, cos_o_, weight_o_);
   values_.assign(static_cast<std::size_t>(grid.theta_i_count) *
                      static_cast<std::size_t>(grid.theta_o_count) *
                      static_cast<std::size_t>(grid.phi_count),

@@ -663,9 +663,10 @@ TEST(RossBrdf, EffectiveFresnelIntegratorAgreesWithAnIndependentRule) {
     const ocean::SchlickAverage flat =
         ocean::effective_fresnel_schlick_average(cos_theta, 0.0, 0.0);
     EXPECT_NEAR(flat.value, std::pow(1.0 - cos_theta, 5.0), 1e-14) << cos_theta;
-    if (cos_theta > 0.0)
+    if (cos_theta > 0.0) {
       EXPECT_NEAR(flat.across_derivative, 2.5 * cos_theta * std::pow(1.0 - cos_theta, 4.0), 1e-12)
           << cos_theta;
+    }
     EXPECT_NEAR(ocean::effective_fresnel_schlick_average(cos_theta, 1e-12, 1e-12).value,
                 std::pow(1.0 - cos_theta, 5.0), 1e-5);
   }
