@@ -12,6 +12,8 @@ std::string stats_json(const RenderStats& stats) {
   nlohmann::ordered_json json;
   json["backend"] = stats.backend;
   json["renderer"] = stats.renderer;
+  json["gl_version"] = stats.gl_version;
+  json["context"] = stats.context;
   json["width"] = stats.width;
   json["height"] = stats.height;
   json["mode"] = stats.mode;

@@ -655,7 +655,10 @@ int run_validate(const ValidateArgs& args) {
   report.description = suite.description;
   report.source = suite.source;
   report.backend = std::string(backend_name(context->backend()));
-  report.renderer = query_gl_info().renderer;
+  const GlInfo gl_info = query_gl_info();
+  report.renderer = gl_info.renderer;
+  report.gl_version = gl_info.version;
+  report.context = context->description();
   report.version = THALASSA_VERSION_STRING;
   report.horizon = suite.horizon;
   report.timing = suite.timing;
@@ -724,6 +727,7 @@ int run_validate(const ValidateArgs& args) {
       results[i]->fingerprint = fingerprints[i];
       results[i]->sea_of = c.sea_of;
       results[i]->sea = c.sea;
+      results[i]->gl_version = report.gl_version;
       longest_case = std::max(longest_case, seconds_since(case_start));
     }
     ++run;

@@ -568,6 +568,8 @@ RenderStats Renderer::stats() const {
   RenderStats stats;
   stats.backend = std::string(backend_name(m.context.backend()));
   stats.renderer = m.info.renderer;
+  stats.gl_version = m.info.version;
+  stats.context = m.context.description();
   stats.width = m.target.width();
   stats.height = m.target.height();
   stats.mode = m.scene.camera.height >= kSpaceModeHeight ? "space" : "surface";

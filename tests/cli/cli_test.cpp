@@ -97,6 +97,9 @@ TEST_F(Cli, StatsJsonHasTheContractKeys) {
   for (const char* key : {"backend", "renderer", "width", "height", "mode", "frame_ms", "passes",
                           "resolved_waves", "built"})
     EXPECT_TRUE(stats.contains(key)) << key;
+  // What the frame times are to be read with: the driver's version and how the context was made.
+  EXPECT_NE(stats["gl_version"].get<std::string>().find("4."), std::string::npos);
+  EXPECT_FALSE(stats["context"].get<std::string>().empty());
   EXPECT_EQ(stats["width"], 32);
   EXPECT_EQ(stats["mode"], "surface");
   EXPECT_EQ(stats["frames"], 3);

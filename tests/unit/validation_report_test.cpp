@@ -115,6 +115,8 @@ Report synthetic_report() {
   report.source = "unit.json";
   report.backend = "osmesa";
   report.renderer = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  report.gl_version = "4.5 (Core Profile) Mesa 22.3.6";
+  report.context = "EGL 1.5 device platform (Mesa Project), told of GPU resets";
   report.reference.pixel_samples = 64;
   report.reference.pixel_samples_without_sun = 512;
   report.reference.sun_normal_samples = 4096;
@@ -172,6 +174,7 @@ Report synthetic_report() {
     c.methods.push_back(std::move(r));
   }
   c.seconds = 123.0 / 7.0;
+  c.gl_version = "4.5 (Core Profile) Mesa 22.3.5";  // kept from a run under an older driver
   report.cases.push_back(c);
   CaseResult bad;
   bad.name = "lat_out_of_range";
@@ -234,6 +237,14 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_NE(index.find("href=\"" + t.exr + "\""), std::string::npos) << t.exr;
   }
   EXPECT_NE(index.find("&lt;markup&gt; &amp; &quot;quotes&quot;"), std::string::npos);
+  // The driver and the context of the run, and the case rendered under another driver.
+  EXPECT_NE(index.find("OpenGL 4.5 (Core Profile) Mesa 22.3.6; context EGL 1.5 device platform "
+                       "(Mesa Project), told of GPU resets."),
+            std::string::npos);
+  EXPECT_NE(index.find("Rendered under OpenGL 4.5 (Core Profile) Mesa 22.3.5: "
+                       "wind10_100m_low_sun.</p>"),
+            std::string::npos);
+  EXPECT_EQ(index.find("lat_out_of_range.</p>"), std::string::npos);
   EXPECT_NE(index.find("Of 2 references and terms: 0 within it, <span class=\"fail\">2 not</span>"),
             std::string::npos);
   EXPECT_NE(index.find("its sun gathered in cells"), std::string::npos);
@@ -378,6 +389,8 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   // results.json: the whole report, read back.
   const Report back = report_from_json(read_text(dir_ / "results.json"));
   EXPECT_EQ(back.renderer, report.renderer);
+  EXPECT_EQ(back.gl_version, report.gl_version);
+  EXPECT_EQ(back.context, report.context);
   EXPECT_EQ(back.reference.pixel_samples, report.reference.pixel_samples);
   EXPECT_EQ(back.reference.pixel_samples_without_sun, report.reference.pixel_samples_without_sun);
   EXPECT_EQ(back.reference.sun_normal_samples, report.reference.sun_normal_samples);
@@ -391,6 +404,8 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.cases[0].seconds, c.seconds);
   EXPECT_FALSE(back.cases[1].seconds.has_value());
   ASSERT_EQ(back.cases.size(), 2u);
+  EXPECT_EQ(back.cases[0].gl_version, c.gl_version);
+  EXPECT_EQ(back.cases[1].gl_version, "");
   EXPECT_EQ(back.cases[1].message, report.cases[1].message);
   EXPECT_TRUE(back.cases[1].passed());
   ASSERT_EQ(back.cases[0].set.size(), 3u);

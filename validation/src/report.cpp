@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -951,7 +952,19 @@ std::string index_html(const Report& report,
       "48%}.fail{color:#b00;font-weight:bold}</style>\n</head><body>\n";
   h += "<h1>Suite " + html(report.suite) + "</h1>\n<p>" + html(report.description) + "</p>\n";
   h += "<p>Suite file: " + html(report.source) + "; thalassa " + html(report.version) +
-       "; backend " + html(report.backend) + "; renderer " + html(report.renderer) + ".</p>\n";
+       "; backend " + html(report.backend) + "; renderer " + html(report.renderer) +
+       (report.gl_version.empty() ? std::string() : ", OpenGL " + html(report.gl_version)) +
+       (report.context.empty() ? std::string() : "; context " + html(report.context)) + ".</p>\n";
+  // Cases kept (--resume) from a run under another driver: their frame times are that driver's.
+  std::map<std::string, std::vector<std::string>> other_drivers;
+  for (const CaseResult& c : report.cases)
+    if (!c.gl_version.empty() && c.gl_version != report.gl_version)
+      other_drivers[c.gl_version].push_back(c.name);
+  for (const auto& [version, names] : other_drivers) {
+    h += "<p>Rendered under OpenGL " + html(version) + ":";
+    for (const std::string& name : names) h += " " + html(name);
+    h += ".</p>\n";
+  }
   h += "<p>Frame times: " +
        (report.timing.enabled()
             ? "each method other than the reference timed apart at " + timing_text(report.timing) +
@@ -1379,6 +1392,8 @@ std::string report_json(const Report& report) {
   j["version"] = report.version;
   j["backend"] = report.backend;
   j["renderer"] = report.renderer;
+  j["gl_version"] = report.gl_version;
+  j["context"] = report.context;
   j["horizon"] = {{"depth_deg", report.horizon.depth_deg}, {"bin_deg", report.horizon.bin_deg}};
   j["timing"] = {{"width", report.timing.width},
                  {"height", report.timing.height},
@@ -1412,6 +1427,7 @@ std::string report_json(const Report& report) {
       jc["sea_of"] = c.sea_of;
       jc["sea"] = c.sea;
     }
+    if (!c.gl_version.empty()) jc["gl_version"] = c.gl_version;
     if (c.timing.enabled())
       jc["timing"] = {
           {"width", c.timing.width}, {"height", c.timing.height}, {"frames", c.timing.frames}};
@@ -1499,6 +1515,8 @@ Report report_from_json(const std::string& json_text) {
   report.version = j.at("version");
   report.backend = j.at("backend");
   report.renderer = j.at("renderer");
+  report.gl_version = j.value("gl_version", std::string());
+  report.context = j.value("context", std::string());
   report.horizon = {get_number(j.at("horizon").at("depth_deg")),
                     get_number(j.at("horizon").at("bin_deg"))};
   report.suite_cases = j.value("suite_cases", 0);
@@ -1535,6 +1553,7 @@ Report report_from_json(const std::string& json_text) {
     c.seconds = optional_from(jc, "seconds");
     c.sea_of = jc.value("sea_of", std::string());
     c.sea = jc.value("sea", 0);
+    c.gl_version = jc.value("gl_version", std::string());
     std::vector<std::pair<std::size_t, std::size_t>> without_row_error;  // (method, term)
     if (jc.contains("timing")) c.timing = timing_from(jc.at("timing"));
     for (const ojson& jm : jc.at("methods")) {

@@ -29,6 +29,11 @@ constexpr double kSpaceModeHeight = 20000.0;
 struct RenderStats {
   std::string backend;   // "egl", "osmesa", "glfw", "host"
   std::string renderer;  // GL_RENDERER
+  // GL_VERSION, which holds the driver's version ("4.5 (Core Profile) Mesa 22.3.6", "4.6.0
+  // NVIDIA 580.159.04"), and how the context was made (GlContext::description: "EGL 1.5 device
+  // platform (NVIDIA), told of GPU resets"): what a frame time or a fault is to be read with.
+  std::string gl_version;
+  std::string context;
   int width = 0;         // pixels
   int height = 0;
   std::string mode;     // "space" or "surface"

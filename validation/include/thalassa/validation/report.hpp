@@ -110,6 +110,9 @@ struct CaseResult {
   // that case's name and which sea; "" and 0 otherwise.
   std::string sea_of;
   int sea = 0;
+  // GL_VERSION (with the driver's version) of the run that rendered it: a case kept by --resume
+  // keeps its own, which may differ from the report's ("" in a report written before stop 43).
+  std::string gl_version;
   // The case passed: it ended as expected (expected_exit, and expected_error in the message).
   bool passed() const;
 };
@@ -120,6 +123,8 @@ struct Report {
   std::string source;       // the suite file
   std::string backend;      // RenderStats::backend
   std::string renderer;     // RenderStats::renderer (GL_RENDERER)
+  std::string gl_version;   // RenderStats::gl_version of this run ("" before stop 43)
+  std::string context;      // RenderStats::context of this run ("" before stop 43)
   std::string version;      // thalassa's version
   HorizonBandOptions horizon;
   TimingSettings timing;        // Suite::timing, as run
