@@ -18,10 +18,6 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-// Newton's iteration on P_n for the Gauss-Legendre nodes converges quadratically from the
-// asymptotic initial guess; it stops when a step is below this (absolute, in cos theta), then
-// takes one more step.
-
 // |C + V| below this (V within ~1e-12 rad of -C) has no normal that mirrors V into C.
 constexpr double kMinHalfVectorLength = 1e-12;
 

@@ -51,9 +51,7 @@ GlInfo query_gl_info() {
   add("fp64 in shaders", GLAD_GL_VERSION_4_0 || GLAD_GL_ARB_gpu_shader_fp64, false);
   add("timer queries", GLAD_GL_VERSION_3_3 || GLAD_GL_ARB_timer_query, true);
   add("float atomics (GL_NV_shader_atomic_float)", GLAD_GL_NV_shader_atomic_float != 0, false);
-  GLint strategy = GL_NO_RESET_NOTIFICATION;
-  glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
-  add("context loss reported (GPU resets)", strategy == GL_LOSE_CONTEXT_ON_RESET, false);
+  add("context loss reported (GPU resets)", gl::context_told_of_resets(), false);
   const bool aniso =
       GLAD_GL_ARB_texture_filter_anisotropic || GLAD_GL_EXT_texture_filter_anisotropic;
   GLfloat max_aniso = 1.0f;

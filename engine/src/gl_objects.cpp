@@ -51,6 +51,12 @@ std::string context_reset() {
   }
 }
 
+bool context_told_of_resets() {
+  GLint strategy = GL_NO_RESET_NOTIFICATION;
+  glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
+  return strategy == GL_LOSE_CONTEXT_ON_RESET;
+}
+
 void delete_buffer(GLuint name) { glDeleteBuffers(1, &name); }
 void delete_texture(GLuint name) { glDeleteTextures(1, &name); }
 void delete_framebuffer(GLuint name) { glDeleteFramebuffers(1, &name); }

@@ -1140,13 +1140,10 @@ class OceanNode final : public gl::Node {
       scatter_fault_ = fault;
       if (attempt >= kScatterRetries) {
         const GLenum error = glGetError();
-        GLint strategy = GL_NO_RESET_NOTIFICATION;
-        glGetIntegerv(GL_RESET_NOTIFICATION_STRATEGY, &strategy);
         char codes[96];
         std::snprintf(codes, sizeof codes, " (%s, GL error 0x%04X)",
-                      strategy == GL_LOSE_CONTEXT_ON_RESET
-                          ? "no GPU reset reported"
-                          : "the context is not told of GPU resets",
+                      gl::context_told_of_resets() ? "no GPU reset reported"
+                                                   : "the context is not told of GPU resets",
                       error);
         throw gl::GlError("the reference's scattered sun: the lattice scattered " +
                           std::to_string(attempt + 1) +

@@ -30,4 +30,8 @@ void check_error(const char* where);
 // context is void: it must be made again.
 std::string context_reset();
 
+// Whether the current context was made to be told of GPU resets (its reset notification
+// strategy is LOSE_CONTEXT_ON_RESET), so that context_reset can report one.
+bool context_told_of_resets();
+
 }  // namespace thalassa::gl
