@@ -498,10 +498,10 @@ void add_validate_command(CLI::App& app, ValidateArgs& args) {
   validate
       ->add_option("--seas", args.seas,
                    "Draw each selected case over this many seas, its ocean.seed and the next "
-                   "ones (cases NAME_sea1 to NAME_seaN), and sum each row's totals over them "
-                   "(seas.csv, index.html): the reference draws one sea's glints and the other "
-                   "methods the expected glint of their BRDFs, so rows of few glints compare a "
-                   "sea's luck unless the seas are summed")
+                   "ones (cases NAME_sea1 to NAME_seaN), sum each row's totals over them and pool "
+                   "their horizon bands (seas.csv, seas_horizon.csv, index.html): the reference "
+                   "draws one sea's glints and the other methods the expected glint of their "
+                   "BRDFs, so rows of few glints compare a sea's luck unless the seas are summed")
       ->check(CLI::Range(1, validation::kMaxSeas));
   validate->add_flag("--resume", args.resume,
                      "Keep the cases of the report already in the output folder that were run "

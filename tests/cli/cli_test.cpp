@@ -526,7 +526,8 @@ TEST_F(Cli, ValidateMeasuresASeaChangingVariantAgainstItsOwnReference) {
 }
 
 // --seas N draws each selected case over N seas (its ocean.seed and the next ones), as cases of
-// their own, and the report sums their rows (seas.csv; validation::summarize_seas).
+// their own, and the report sums their rows and pools their horizon bands (seas.csv,
+// seas_horizon.csv; validation::summarize_seas).
 TEST_F(Cli, ValidateDrawsTheSelectedCasesOverTheirSeas) {
   write("seas.json", R"({
     "suite": "seas",
@@ -554,6 +555,11 @@ TEST_F(Cli, ValidateDrawsTheSelectedCasesOverTheirSeas) {
   const std::string text{std::istreambuf_iterator<char>(csv), std::istreambuf_iterator<char>()};
   EXPECT_NE(text.find("\nnear,basic,sun,2,"), std::string::npos) << text;
   EXPECT_NE(text.find("\nnear,full,sun,2,"), std::string::npos) << text;
+  // The horizon band pooled over the two seas, bin by bin from the horizon down.
+  std::ifstream bins(dir_ / "report" / "seas_horizon.csv");
+  const std::string bins_text{std::istreambuf_iterator<char>(bins),
+                              std::istreambuf_iterator<char>()};
+  EXPECT_NE(bins_text.find("\nnear,full,sun,2,0,0.5,"), std::string::npos) << bins_text;
 }
 
 TEST_F(Cli, ValidateRefusesBadSuitesAndReportsUnexpectedEnds) {

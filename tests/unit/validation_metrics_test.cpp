@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -511,6 +512,94 @@ TEST(ValidationMetrics, KnownGradientBelowTheHorizonGivesTheExpectedBandMeanAndS
     EXPECT_NEAR(b.mean, 0.125, 1e-7);
     EXPECT_LT(b.std, 1e-12);
   }
+}
+
+// thalassa validate --seas pools the bands of a case's seas (pool_horizon_bands): per bin the
+// pixels of every band as one set. The identity: the pooled bands of disjoint masks are the band
+// of their union. A rolled view (its bins cross the image's rows) and random images; the image
+// cut into three masks of different sizes (columns left of 150, a checkerboard of the rest, and
+// what remains), one of them leaving a bin empty.
+TEST(ValidationMetrics, PooledHorizonBandsOfDisjointMasksAreTheBandOfTheirUnion) {
+  Scene scene = view_scene(400, 300);
+  scene.camera.height = 100.0;
+  scene.camera.pitch = -2.0;
+  scene.camera.roll = 15.0;
+  scene.camera.fov_y = 20.0;
+  const ViewGeometry view(scene);
+  const Image reference = random_image(400, 300, 11);
+  const Image method = random_image(400, 300, 12);
+  PixelMask left = PixelMask::all(400, 300), checks = left, rest = left;
+  for (int y = 0; y < 300; ++y)
+    for (int x = 0; x < 400; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * 400 + x;
+      const bool in_left = x < 150;
+      const bool in_checks = !in_left && (x / 7 + y / 5) % 2 == 0;
+      left.inside[i] = in_left;
+      checks.inside[i] = in_checks;
+      // The rest leaves out the band's deepest bin (4.5-5 degrees): an empty bin in one band.
+      rest.inside[i] = !in_left && !in_checks && view.below_horizon(x, y) < 4.5 * kDegree;
+    }
+  PixelMask all = left;
+  for (std::size_t i = 0; i < all.inside.size(); ++i)
+    all.inside[i] = left.inside[i] || checks.inside[i] || rest.inside[i];
+  HorizonBandOptions options;
+  const HorizonBand whole = horizon_band(method, reference, view, options, &all);
+  const std::vector<HorizonBand> parts = {horizon_band(method, reference, view, options, &left),
+                                          horizon_band(method, reference, view, options, &checks),
+                                          horizon_band(method, reference, view, options, &rest)};
+  ASSERT_EQ(parts[2].bins.back().pixels, 0);
+  ASSERT_TRUE(std::isnan(parts[2].bins.back().mean));
+  const HorizonBand pooled = pool_horizon_bands(parts);
+  ASSERT_EQ(pooled.bins.size(), whole.bins.size());
+  EXPECT_EQ(pooled.pixels, whole.pixels);
+  for (std::size_t k = 0; k < whole.bins.size(); ++k) {
+    const HorizonBin& a = pooled.bins[k];
+    const HorizonBin& b = whole.bins[k];
+    ASSERT_GT(b.pixels, 500) << k;
+    EXPECT_EQ(a.beta_lo_deg, b.beta_lo_deg);
+    EXPECT_EQ(a.beta_hi_deg, b.beta_hi_deg);
+    EXPECT_EQ(a.pixels, b.pixels) << k;
+    EXPECT_NEAR(a.weight, b.weight, 1e-12 * b.weight) << k;
+    EXPECT_NEAR(a.mean, b.mean, 1e-12 * b.std) << k;
+    EXPECT_NEAR(a.std, b.std, 1e-12 * b.std) << k;
+    EXPECT_NEAR(a.reference_mean, b.reference_mean, 1e-12 * b.reference_mean) << k;
+    // The parts differ: pooling is not a plain average of their values.
+    EXPECT_NE(parts[0].bins[k].mean, parts[1].bins[k].mean) << k;
+  }
+  EXPECT_NEAR(pooled.mean, whole.mean, 1e-12 * whole.std);
+  EXPECT_NEAR(pooled.std, whole.std, 1e-12 * whole.std);
+  EXPECT_NEAR(pooled.reference_mean, whole.reference_mean, 1e-12 * whole.reference_mean);
+
+  // One band pools to itself; bands of one constant difference to a standard deviation of 0.
+  const HorizonBand self = pool_horizon_bands(std::span(parts).first(1));
+  for (std::size_t k = 0; k < self.bins.size(); ++k) {
+    EXPECT_DOUBLE_EQ(self.bins[k].mean, parts[0].bins[k].mean);
+    EXPECT_NEAR(self.bins[k].std, parts[0].bins[k].std, 1e-15);
+  }
+  const Image shifted = [&] {
+    Image out = reference;
+    for (std::size_t i = 0; i < out.rgba.size(); i += 4)
+      for (int c = 0; c < 3; ++c) out.rgba[i + c] += 0.125f;
+    return out;
+  }();
+  const std::vector<HorizonBand> constant = {
+      horizon_band(shifted, reference, view, options, &left),
+      horizon_band(shifted, reference, view, options, &checks)};
+  for (const HorizonBin& b : pool_horizon_bands(constant).bins) {
+    EXPECT_NEAR(b.mean, 0.125, 1e-7);
+    EXPECT_LT(b.std, 1e-7);  // float rounding of the shifted pixels, not cancellation
+  }
+
+  // No band: no bins, NaN; bands of other bins are refused.
+  const HorizonBand none = pool_horizon_bands({});
+  EXPECT_TRUE(none.bins.empty());
+  EXPECT_EQ(none.pixels, 0);
+  EXPECT_TRUE(std::isnan(none.mean));
+  HorizonBandOptions finer = options;
+  finer.bin_deg = 0.25;
+  const std::vector<HorizonBand> mixed = {parts[0],
+                                          horizon_band(method, reference, view, finer, &checks)};
+  EXPECT_THROW(pool_horizon_bands(mixed), std::invalid_argument);
 }
 
 // The band weights pixels by their area in the (azimuth, angle) plane, so that the mean is

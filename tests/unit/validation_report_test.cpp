@@ -204,8 +204,9 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
   options.plot_width = 640;
   options.plot_height = 400;
   const std::vector<std::string> written = write_report(report, dir_.string(), options);
-  for (const char* name : {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv",
-                           "summary.csv", "claim.csv", "convergence.csv", "seas.csv", "index.html"})
+  for (const char* name :
+       {"results.json", "metrics.csv", "rows.csv", "horizon.csv", "cases.csv", "summary.csv",
+        "claim.csv", "convergence.csv", "seas.csv", "seas_horizon.csv", "index.html"})
     EXPECT_TRUE(std::find(written.begin(), written.end(), name) != written.end()) << name;
   const std::string c = report.cases[0].name;
   // Per term: rows and horizon; per case: error against time. The case that did not render has
@@ -224,7 +225,7 @@ TEST_F(ValidationReport, WritesEveryFileWithPlotsDrawnByGnuplot) {
     EXPECT_EQ(png.height, 400) << p;
   }
   for (const std::string& rel : written) EXPECT_TRUE(fs::is_regular_file(dir_ / rel)) << rel;
-  EXPECT_EQ(written.size(), 10u + 3u * plots.size());
+  EXPECT_EQ(written.size(), 11u + 3u * plots.size());
   // Nothing pending or temporary is left.
   for (const auto& entry : fs::recursive_directory_iterator(dir_))
     EXPECT_NE(entry.path().filename().string()[0], '.') << entry.path();
@@ -699,8 +700,9 @@ TEST_F(ValidationReport, FailingGnuplotIsReportedWithItsOutput) {
 // needs its lattice measured; one test at or above 1 % fails it whatever the other says.
 // thalassa validate --seas: the seas of a case sum their rows before the row error, on the rows
 // every sea compares (a row the reference does not light in one sea among them), beside the
-// basic method's over the same rows and the count of seas alone where the method is the closer;
-// a case that is no sea adds no line; sea_of and sea read back.
+// basic method's over the same rows and the count of seas alone where the method is the closer,
+// and pool their horizon bands bin by bin; a case that is no sea adds no line; sea_of and sea
+// read back.
 TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Per sea: the reference's, full's and basic's row totals (luminance) of 5 rows (NaN: not
@@ -730,6 +732,15 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
       t.metrics.row_error = 0.25;  // not what the seas' line reads
       t.frame_ms = 2.5;            // what the error-against-time plot needs
       t.metrics.error.relative_l1 = {0.1, 0.1, 0.1, 0.1};
+      // Two bins of the band: the first with mean 1 (sea 1) and 3 (sea 2), standard deviation
+      // 0.5 and weight 2 in each; the second lit in sea 1 alone. basic's means are 1 higher.
+      const double offset = std::string(name) == "basic" ? 1.0 : 0.0;
+      HorizonBand& band = t.metrics.horizon;
+      band.bins.push_back(
+          {0.0, 0.5, 10, 2.0, (k == 0 ? 1.0 : 3.0) + offset, 0.5, k == 0 ? 4.0 : 6.0});
+      band.bins.push_back(k == 0 ? HorizonBin{0.5, 1.0, 4, 1.0, -1.0 + offset, 0.0, 2.0}
+                                 : HorizonBin{0.5, 1.0, 0, 0.0, nan, nan, nan});
+      band.pixels = k == 0 ? 14 : 10;
       m.terms.push_back(t);
       return m;
     };
@@ -768,8 +779,26 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   EXPECT_DOUBLE_EQ(lines[1].reference_rows[4], 6.0);
   EXPECT_TRUE(std::isnan(lines[1].reference_rows[3]));
   EXPECT_DOUBLE_EQ(lines[0].method_rows[1], 40.0);
-  // The files: seas.csv holds the lines, index.html their table and the plot of the summed rows,
-  // results.json the seas.
+  // full's bands pooled: the first bin's weight 4, mean (2 x 1 + 2 x 3) / 4 = 2, variance
+  // (2 (0.25 + 1) + 2 (0.25 + 1)) / 4 = 1.25 (the spread within each sea and between them),
+  // reference mean 5; the second bin sea 1's alone; the band's summary each bin once.
+  const HorizonBand& pooled = lines[1].horizon;
+  ASSERT_EQ(pooled.bins.size(), 2u);
+  EXPECT_EQ(pooled.bins[0].pixels, 20);
+  EXPECT_DOUBLE_EQ(pooled.bins[0].weight, 4.0);
+  EXPECT_DOUBLE_EQ(pooled.bins[0].mean, 2.0);
+  EXPECT_DOUBLE_EQ(pooled.bins[0].std, std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(pooled.bins[0].reference_mean, 5.0);
+  EXPECT_EQ(pooled.bins[1].pixels, 4);
+  EXPECT_DOUBLE_EQ(pooled.bins[1].mean, -1.0);
+  EXPECT_DOUBLE_EQ(pooled.bins[1].std, 0.0);
+  EXPECT_EQ(pooled.pixels, 24);
+  EXPECT_DOUBLE_EQ(pooled.mean, 0.5);
+  EXPECT_DOUBLE_EQ(pooled.std, 0.5 * std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(pooled.reference_mean, 3.5);
+  EXPECT_DOUBLE_EQ(lines[0].horizon.bins[0].mean, 3.0);  // basic's
+  // The files: seas.csv holds the lines, index.html their table and the plots of the summed rows
+  // and of the pooled bands, seas_horizon.csv the bands' bins, results.json the seas.
   const std::vector<std::string> written = write_report(report, dir_.string());
   EXPECT_NE(std::find(written.begin(), written.end(), "plots/view_seas_sun_rows.png"),
             written.end());
@@ -791,13 +820,35 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   EXPECT_NE(read_text(dir_ / "index.html").find("plots/view_seas_sun_rows.png"), std::string::npos);
   const auto csv = parse_csv(read_text(dir_ / "seas.csv"));
   ASSERT_EQ(csv.size(), 3u);
-  EXPECT_EQ(csv[0], (std::vector<std::string>{"case", "method", "term", "seas", "rows", "row_error",
-                                              "basic_row_error", "closer_alone"}));
+  EXPECT_EQ(csv[0],
+            (std::vector<std::string>{"case", "method", "term", "seas", "rows", "row_error",
+                                      "basic_row_error", "closer_alone", "horizon_mean",
+                                      "horizon_std", "horizon_reference_mean", "horizon_pixels"}));
   EXPECT_EQ(csv[2][0], "view");
   EXPECT_EQ(csv[2][1], "full");
   EXPECT_EQ(csv_number(csv[2][5]), 3.0 / 76.0);
   EXPECT_EQ(csv[2][7], "1");
   EXPECT_EQ(csv[1][7], "");
+  EXPECT_DOUBLE_EQ(csv_number(csv[2][8]), 0.5);
+  EXPECT_DOUBLE_EQ(csv_number(csv[2][9]), 0.5 * std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(csv_number(csv[2][10]), 3.5);
+  EXPECT_EQ(csv[2][11], "24");
+  const auto bins = parse_csv(read_text(dir_ / "seas_horizon.csv"));
+  ASSERT_EQ(bins.size(), 5u);  // the header, two methods of two bins
+  EXPECT_EQ(bins[0], (std::vector<std::string>{"case", "method", "term", "seas", "beta_lo_deg",
+                                               "beta_hi_deg", "pixels", "weight_rad2", "mean",
+                                               "std", "reference_mean"}));
+  EXPECT_EQ(bins[3][1], "full");
+  EXPECT_EQ(bins[3][3], "2");
+  EXPECT_EQ(bins[3][6], "20");
+  EXPECT_DOUBLE_EQ(csv_number(bins[3][8]), 2.0);
+  EXPECT_DOUBLE_EQ(csv_number(bins[3][9]), std::sqrt(1.25));
+  EXPECT_DOUBLE_EQ(csv_number(bins[4][8]), -1.0);
+  EXPECT_TRUE(fs::is_regular_file(dir_ / "plots" / "view_seas_sun_horizon.png"));
+  EXPECT_NE(std::find(written.begin(), written.end(), "plots/view_seas_sun_horizon.png"),
+            written.end());
+  EXPECT_NE(read_text(dir_ / "index.html").find("plots/view_seas_sun_horizon.png"),
+            std::string::npos);
   EXPECT_NE(read_text(dir_ / "index.html").find("<h2>Over the seas</h2>"), std::string::npos);
   const Report back = report_from_json(read_text(dir_ / "results.json"));
   ASSERT_EQ(back.cases.size(), report.cases.size());
@@ -810,6 +861,7 @@ TEST_F(ValidationReport, SeasAreSummedRowByRowOnTheRowsEverySeaCompares) {
   write_report(synthetic_report(), dir_.string());
   EXPECT_TRUE(summarize_seas(synthetic_report()).empty());
   EXPECT_EQ(parse_csv(read_text(dir_ / "seas.csv")).size(), 1u);
+  EXPECT_EQ(parse_csv(read_text(dir_ / "seas_horizon.csv")).size(), 1u);
   EXPECT_EQ(read_text(dir_ / "index.html").find("Over the seas"), std::string::npos);
 }
 

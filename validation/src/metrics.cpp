@@ -302,6 +302,28 @@ ErrorStats relative_errors(const Image& method, const Image& reference, const Pi
 // - the difference is method minus reference (positive: the method is brighter);
 // - the band's summary averages the non-empty bins' values with equal weight per bin.
 
+namespace {
+// The band's pixels and its summary from its bins: the non-empty bins' values averaged with
+// equal weight per bin; NaN when every bin is empty.
+void summarize_bins(HorizonBand& band) {
+  double mean_sum = 0.0, std_sum = 0.0, ref_sum = 0.0;
+  int filled = 0;
+  band.pixels = 0;
+  for (const HorizonBin& b : band.bins) {
+    band.pixels += b.pixels;
+    if (b.pixels > 0 && b.weight > 0.0) {
+      mean_sum += b.mean;
+      std_sum += b.std;
+      ref_sum += b.reference_mean;
+      ++filled;
+    }
+  }
+  band.mean = filled ? mean_sum / filled : kNaN;
+  band.std = filled ? std_sum / filled : kNaN;
+  band.reference_mean = filled ? ref_sum / filled : kNaN;
+}
+}  // namespace
+
 HorizonBand horizon_band(const Image& method, const Image& reference, const ViewGeometry& view,
                          const HorizonBandOptions& options, const PixelMask* compared) {
   check_same_size(method, reference, "horizon_band");
@@ -344,8 +366,6 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
     }
   }
   HorizonBand band;
-  double mean_sum = 0.0, std_sum = 0.0, ref_sum = 0.0;
-  int filled = 0;
   for (int k = 0; k < bins; ++k) {
     const Sums& s = sums[k];
     HorizonBin b;
@@ -357,20 +377,73 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
       b.mean = s.wd / s.w;
       b.std = std::sqrt(s.wdd / s.w);
       b.reference_mean = s.wr / s.w;
-      mean_sum += b.mean;
-      std_sum += b.std;
-      ref_sum += b.reference_mean;
-      ++filled;
     } else {
       b.mean = b.std = b.reference_mean = kNaN;
     }
-    band.pixels += s.n;
     band.bins.push_back(b);
   }
-  band.mean = filled ? mean_sum / filled : kNaN;
-  band.std = filled ? std_sum / filled : kNaN;
-  band.reference_mean = filled ? ref_sum / filled : kNaN;
+  summarize_bins(band);
   return band;
+}
+
+// Per bin, the pixels of every band as one set: with W_i, m_i, s_i and r_i band i's weight,
+// mean, standard deviation and reference mean there, the set's weight is W = sum W_i, its mean
+// m = sum W_i m_i / W, its variance sum W_i (s_i^2 + (m_i - m)^2) / W (each band's spread about
+// its own mean plus its mean's about the set's: the parallel-axis form, no cancellation, so that
+// bands of one constant difference pool to a standard deviation of exactly 0), its reference
+// mean sum W_i r_i / W. A bin empty in a band (no pixel or no weight) adds nothing to it.
+HorizonBand pool_horizon_bands(std::span<const HorizonBand> bands) {
+  HorizonBand pooled;
+  if (bands.empty()) {
+    pooled.mean = pooled.std = pooled.reference_mean = kNaN;
+    return pooled;
+  }
+  const std::vector<HorizonBin>& first = bands.front().bins;
+  for (const HorizonBand& band : bands) {
+    bool same = band.bins.size() == first.size();
+    for (std::size_t k = 0; same && k < first.size(); ++k)
+      same = band.bins[k].beta_lo_deg == first[k].beta_lo_deg &&
+             band.bins[k].beta_hi_deg == first[k].beta_hi_deg;
+    if (!same)
+      throw std::invalid_argument(
+          "pool_horizon_bands: expected bands of the same bins (depth and bin width), got " +
+          std::to_string(first.size()) + " and " + std::to_string(band.bins.size()) + " bins");
+  }
+  const auto filled = [](const HorizonBin& b) {
+    return b.pixels > 0 && b.weight > 0.0 && std::isfinite(b.mean) && std::isfinite(b.std) &&
+           std::isfinite(b.reference_mean);
+  };
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    HorizonBin p;
+    p.beta_lo_deg = first[k].beta_lo_deg;
+    p.beta_hi_deg = first[k].beta_hi_deg;
+    double wd = 0.0, wr = 0.0;
+    for (const HorizonBand& band : bands) {
+      const HorizonBin& b = band.bins[k];
+      if (!filled(b)) continue;
+      p.pixels += b.pixels;
+      p.weight += b.weight;
+      wd += b.weight * b.mean;
+      wr += b.weight * b.reference_mean;
+    }
+    if (p.weight > 0.0) {
+      p.mean = wd / p.weight;
+      p.reference_mean = wr / p.weight;
+      double spread = 0.0;
+      for (const HorizonBand& band : bands) {
+        const HorizonBin& b = band.bins[k];
+        if (!filled(b)) continue;
+        const double offset = b.mean - p.mean;
+        spread += b.weight * (b.std * b.std + offset * offset);
+      }
+      p.std = std::sqrt(spread / p.weight);
+    } else {
+      p.mean = p.std = p.reference_mean = kNaN;
+    }
+    pooled.bins.push_back(p);
+  }
+  summarize_bins(pooled);
+  return pooled;
 }
 
 // ---------------------------------------------------------------------------------------------

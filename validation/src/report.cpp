@@ -518,33 +518,28 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
 }
 
 // Paper 004, fig. 5: the azimuth-averaged mean and standard deviation of the luminance
-// difference to the reference, against the angle below the horizon.
-std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
-                         const std::string& term, const ReportOptions& options) {
-  std::vector<std::pair<std::string, const TermResult*>> curves;
-  for (const MethodResult& m : c.methods) {
-    if (m.method == "reference") continue;
-    const TermResult* t = term_of(m, term);
-    if (t && t->metrics.horizon.pixels > 0) curves.push_back({m.name, t});
-  }
+// difference to the reference, against the angle below the horizon, one curve per named band;
+// `name` the plot's file stem, `title` its heading.
+std::string horizon_bands_plot(
+    const std::string& gnuplot, const fs::path& plots, const std::string& name,
+    const std::string& title, const std::vector<std::pair<std::string, const HorizonBand*>>& curves,
+    const ReportOptions& options) {
   if (curves.empty()) return "";
   std::string data = "# beta_mid_deg";
-  for (const auto& [name, t] : curves) data += " mean_" + name + " std_" + name;
+  for (const auto& [method, band] : curves) data += " mean_" + method + " std_" + method;
   data += "\n# luminance difference method - reference, W m^-2 sr^-1 nm^-1\n";
-  const std::size_t bins = curves.front().second->metrics.horizon.bins.size();
-  for (std::size_t k = 0; k < bins; ++k) {
-    const HorizonBin& b0 = curves.front().second->metrics.horizon.bins[k];
-    data += number(0.5 * (b0.beta_lo_deg + b0.beta_hi_deg));
-    for (const auto& [name, t] : curves) {
-      const auto& bs = t->metrics.horizon.bins;
+  const std::vector<HorizonBin>& first = curves.front().second->bins;
+  for (std::size_t k = 0; k < first.size(); ++k) {
+    data += number(0.5 * (first[k].beta_lo_deg + first[k].beta_hi_deg));
+    for (const auto& [method, band] : curves) {
+      const auto& bs = band->bins;
       data += " " + number(k < bs.size() ? bs[k].mean : kNaN, "NaN") + " " +
               number(k < bs.size() ? bs[k].std : kNaN, "NaN");
     }
     data += "\n";
   }
-  const std::string name = c.name + "_" + term + "_horizon";
   std::string script =
-      "set multiplot layout 1,2 title '" + c.name + ", " + term +
+      "set multiplot layout 1,2 title '" + title +
       ": luminance difference to the reference near the horizon (Tessendorf et al. 2023)'\n"
       "set key outside bottom center horizontal font ',8'\nset grid\n"
       "set xlabel 'degrees below the horizon'\n"
@@ -562,6 +557,19 @@ std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, cons
               curves[i].first + "'";
   script += "\nunset multiplot\n";
   return draw(gnuplot, plots, name, data, script, options);
+}
+
+// The case's methods on `term` (horizon_bands_plot).
+std::string horizon_plot(const std::string& gnuplot, const fs::path& plots, const CaseResult& c,
+                         const std::string& term, const ReportOptions& options) {
+  std::vector<std::pair<std::string, const HorizonBand*>> curves;
+  for (const MethodResult& m : c.methods) {
+    if (m.method == "reference") continue;
+    const TermResult* t = term_of(m, term);
+    if (t && t->metrics.horizon.pixels > 0) curves.push_back({m.name, &t->metrics.horizon});
+  }
+  return horizon_bands_plot(gnuplot, plots, c.name + "_" + term + "_horizon", c.name + ", " + term,
+                            curves, options);
 }
 
 // The median of the finite values (NaN when there is none).
@@ -796,13 +804,28 @@ std::string convergence_csv(const Report& report) {
   return csv;
 }
 
-std::string seas_csv(const Report& report) {
-  std::string csv = csv_line(
-      {"case", "method", "term", "seas", "rows", "row_error", "basic_row_error", "closer_alone"});
-  for (const SeaLine& l : summarize_seas(report))
+std::string seas_csv(const std::vector<SeaLine>& seas) {
+  std::string csv = csv_line({"case", "method", "term", "seas", "rows", "row_error",
+                              "basic_row_error", "closer_alone", "horizon_mean", "horizon_std",
+                              "horizon_reference_mean", "horizon_pixels"});
+  for (const SeaLine& l : seas)
     csv += csv_line({l.case_name, l.method, l.term, std::to_string(l.seas), std::to_string(l.rows),
                      number(l.row_error), number(l.basic_row_error),
-                     l.closer_alone < 0 ? "" : std::to_string(l.closer_alone)});
+                     l.closer_alone < 0 ? "" : std::to_string(l.closer_alone),
+                     number(l.horizon.mean), number(l.horizon.std),
+                     number(l.horizon.reference_mean), std::to_string(l.horizon.pixels)});
+  return csv;
+}
+
+// horizon.csv's columns for the bands pooled over the seas.
+std::string seas_horizon_csv(const std::vector<SeaLine>& seas) {
+  std::string csv = csv_line({"case", "method", "term", "seas", "beta_lo_deg", "beta_hi_deg",
+                              "pixels", "weight_rad2", "mean", "std", "reference_mean"});
+  for (const SeaLine& l : seas)
+    for (const HorizonBin& b : l.horizon.bins)
+      csv += csv_line({l.case_name, l.method, l.term, std::to_string(l.seas), number(b.beta_lo_deg),
+                       number(b.beta_hi_deg), std::to_string(b.pixels), number(b.weight),
+                       number(b.mean), number(b.std), number(b.reference_mean)});
   return csv;
 }
 
@@ -818,9 +841,9 @@ std::string claim_csv(const Report& report) {
 // ---------------------------------------------------------------------------------------------
 // index.html
 
-// The summary over the cases (summarize), fig. 10's claim (fig10_claim) and the plots of the
-// mean row deviation against height.
-std::string summary_html(const Report& report,
+// The summary over the cases (summarize), fig. 10's claim (fig10_claim), the lines over the seas
+// (summarize_seas) and the plots of the mean row deviation against height.
+std::string summary_html(const Report& report, const std::vector<SeaLine>& seas,
                          const std::vector<std::pair<std::string, std::string>>& plots) {
   const std::vector<SummaryLine> lines = summarize(report);
   if (lines.empty()) return "";
@@ -871,7 +894,6 @@ std::string summary_html(const Report& report,
            (l.verdict() == "farther" ? " class=\"fail\">" : ">") + l.verdict() + "</td></tr>\n";
     h += "</table>\n";
   }
-  const std::vector<SeaLine> seas = summarize_seas(report);
   if (!seas.empty()) {
     h += "<h2>Over the seas</h2>\n<p>Per case drawn over several seas (<code>thalassa validate "
          "--seas</code>; <a href=\"seas.csv\">seas.csv</a>), method and term: each row's total "
@@ -880,8 +902,12 @@ std::string summary_html(const Report& report,
          "seas and rows, and in how many seas alone the method's own row error is the smaller. "
          "The reference draws one sea's glints, the methods the expected glint of their BRDFs: "
          "where a row holds few glints, one sea is its luck, and the sum over seas measures the "
-         "method.</p>\n<table><tr><th>case</th><th>method</th><th>term</th><th>seas</th>"
-         "<th>rows</th><th>row error</th><th>basic's</th><th>closer alone</th></tr>\n";
+         "method. The horizon band (paper 004's metric) pools the seas' pixels, bin by bin "
+         "(<a href=\"seas_horizon.csv\">seas_horizon.csv</a>): its mean is the method's bias "
+         "over the seas, its standard deviation the spread within and between them.</p>\n"
+         "<table><tr><th>case</th><th>method</th><th>term</th><th>seas</th>"
+         "<th>rows</th><th>row error</th><th>basic's</th><th>closer alone</th><th>horizon "
+         "mean</th><th>horizon std</th></tr>\n";
     for (const SeaLine& l : seas)
       h += "<tr><td class=\"t\">" + html(l.case_name) + "</td><td class=\"t\">" + html(l.method) +
            "</td><td class=\"t\">" + html(l.term) + "</td><td>" + std::to_string(l.seas) +
@@ -889,6 +915,7 @@ std::string summary_html(const Report& report,
            "</td><td>" + short_number(l.basic_row_error) + "</td><td>" +
            (l.closer_alone < 0 ? std::string()
                                : std::to_string(l.closer_alone) + " of " + std::to_string(l.seas)) +
+           "</td><td>" + short_number(l.horizon.mean) + "</td><td>" + short_number(l.horizon.std) +
            "</td></tr>\n";
     h += "</table>\n";
   }
@@ -939,7 +966,7 @@ std::string convergence_html(const Report& report) {
   return h + "</table>\n";
 }
 
-std::string index_html(const Report& report,
+std::string index_html(const Report& report, const std::vector<SeaLine>& seas,
                        const std::vector<std::vector<std::pair<std::string, std::string>>>& plots,
                        const std::vector<std::pair<std::string, std::string>>& summary_plots) {
   std::string h =
@@ -1018,7 +1045,7 @@ std::string index_html(const Report& report,
          "</td><td>" + short_number(c.seconds.value_or(kNaN)) + "</td></tr>\n";
   h += "</table>\n";
   h += convergence_html(report);
-  h += summary_html(report, summary_plots);
+  h += summary_html(report, seas, summary_plots);
   for (std::size_t ci = 0; ci < report.cases.size(); ++ci) {
     const CaseResult& c = report.cases[ci];
     const MethodResult* ref = reference_of(c);
@@ -1181,6 +1208,8 @@ struct SummedRows {
   int seas = 0;
   // Each sea's own row error over the rows it compares, in the seas' order (NaN: none lit).
   std::vector<double> own_row_errors;
+  // Each sea's near-horizon band whose bins are the first such band's (pool_horizon_bands).
+  std::vector<HorizonBand> bands;
 };
 
 // Over the cases of `seas` that measured `method`'s `term` against its reference (the case's, or
@@ -1218,6 +1247,17 @@ SummedRows summed_rows(const std::vector<const CaseResult*>& seas, const std::st
     }
     sums.own_row_errors.push_back(total > 0.0 ? error / total : kNaN);
     ++sums.seas;
+    const HorizonBand& band = t->metrics.horizon;
+    const auto same_bins = [&](const HorizonBand& other) {
+      if (other.bins.size() != band.bins.size()) return false;
+      for (std::size_t k = 0; k < band.bins.size(); ++k)
+        if (other.bins[k].beta_lo_deg != band.bins[k].beta_lo_deg ||
+            other.bins[k].beta_hi_deg != band.bins[k].beta_hi_deg)
+          return false;
+      return true;
+    };
+    if (!band.bins.empty() && (sums.bands.empty() || same_bins(sums.bands.front())))
+      sums.bands.push_back(band);
   }
   return sums;
 }
@@ -1263,6 +1303,7 @@ std::vector<SeaLine> summarize_seas(const Report& report) {
         }
       }
       line.row_error = row_error(sums.method, sums.reference, sums.ratios);
+      line.horizon = pool_horizon_bands(sums.bands);
       for (std::size_t y = 0; y < sums.ratios.size(); ++y) {
         const bool counts = std::isfinite(sums.ratios[y].l);
         line.rows += counts ? 1 : 0;
@@ -1698,10 +1739,11 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
   } catch (const FileError& e) {
     throw ReportError(e.what());
   }
-  // Over the seas: one plot per case and term, of the methods measured against the case's
-  // reference (a variant with its own reference sums another sea's rows).
+  // Over the seas: per case and term, the rows of the methods measured against the case's
+  // reference (a variant with its own reference sums another sea's rows) and every method's
+  // pooled horizon band.
+  const std::vector<SeaLine> seas = summarize_seas(report);
   try {
-    const std::vector<SeaLine> seas = summarize_seas(report);
     const auto own_reference = [&](const SeaLine& l) {
       for (const CaseResult& c : report.cases)
         if (c.sea_of == l.case_name)
@@ -1717,12 +1759,31 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
       for (const SeaLine& l : seas)
         if (l.case_name == case_name && l.term == term && !own_reference(l)) lines.push_back(&l);
       const std::string png = seas_rows_plot(gnuplot, plots, case_name, term, lines, options);
-      if (png.empty()) continue;
-      const std::string stem = png.substr(0, png.size() - 4);
-      for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
-      summary_links.push_back({case_name + " " + term + ": per-row radiance summed over " +
-                                   std::to_string(lines.front()->seas) + " seas",
-                               "plots/" + png});
+      if (!png.empty()) {
+        const std::string stem = png.substr(0, png.size() - 4);
+        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+        summary_links.push_back({case_name + " " + term + ": per-row radiance summed over " +
+                                     std::to_string(lines.front()->seas) + " seas",
+                                 "plots/" + png});
+      }
+      std::vector<std::pair<std::string, const HorizonBand*>> bands;
+      int most_seas = 0;
+      for (const SeaLine& l : seas)
+        if (l.case_name == case_name && l.term == term && l.horizon.pixels > 0) {
+          bands.push_back({l.method, &l.horizon});
+          most_seas = std::max(most_seas, l.seas);
+        }
+      const std::string horizon_png = horizon_bands_plot(
+          gnuplot, plots, case_name + "_seas_" + term + "_horizon",
+          case_name + ", " + term + ", " + std::to_string(most_seas) + " seas pooled", bands,
+          options);
+      if (!horizon_png.empty()) {
+        const std::string stem = horizon_png.substr(0, horizon_png.size() - 4);
+        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+        summary_links.push_back({case_name + " " + term + ": near the horizon over " +
+                                     std::to_string(most_seas) + " seas",
+                                 "plots/" + horizon_png});
+      }
     }
   } catch (const FileError& e) {
     throw ReportError(e.what());
@@ -1735,8 +1796,9 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
   text("summary.csv", summary_csv(report));
   text("claim.csv", claim_csv(report));
   text("convergence.csv", convergence_csv(report));
-  text("seas.csv", seas_csv(report));
-  text("index.html", index_html(report, plot_links, summary_links));
+  text("seas.csv", seas_csv(seas));
+  text("seas_horizon.csv", seas_horizon_csv(seas));
+  text("index.html", index_html(report, seas, plot_links, summary_links));
   return written;
 }
 

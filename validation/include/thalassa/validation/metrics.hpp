@@ -221,6 +221,13 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
                          const HorizonBandOptions& options = {},
                          const PixelMask* compared = nullptr);
 
+// The band of several images of one view taken together (paper 004 averages its metric over many
+// realizations of the sea; thalassa validate --seas draws a case over several): per bin the
+// pixels of every band as one set, weighted as horizon_band weighs them, so that the pooled
+// bands of disjoint `compared` masks are the band of their union (to rounding). The bins must be
+// the same in every band (std::invalid_argument otherwise); an empty span gives no bins and NaN.
+HorizonBand pool_horizon_bands(std::span<const HorizonBand> bands);
+
 // ---------------------------------------------------------------------------------------------
 // Temporal flicker.
 

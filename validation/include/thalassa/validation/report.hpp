@@ -213,13 +213,14 @@ std::vector<ClaimLine> fig10_claim(const Report& report);
 
 // Over the seas of a case (thalassa validate --seas, CaseResult::sea_of), one line per method
 // or variant measured against a reference and per term, in the order first seen: fig. 10's
-// row totals summed over the seas. A row counts where every sea compares it (its row totals
-// defined in each, whether the reference lit it or not: a row with no glint in one sea and some
-// in another is what the sum is for); the row error (validation::row_error's sum |T_method -
-// T_reference| / sum T_reference) is that of the method's sums against its reference's. The
-// reference draws one sea's glints and the methods the expected glint of their BRDFs: a row of few
-// glints is a realization's luck in one sea, and the sum over seas is what measures the method
-// there (docs/validation.md, "One sea's glints and the BRDF's expected glint").
+// row totals summed over the seas, and the near-horizon band pooled over them. A row counts where
+// every sea compares it (its row totals defined in each, whether the reference lit it or not: a row
+// with no glint in one sea and some in another is what the sum is for); the row error
+// (validation::row_error's sum |T_method - T_reference| / sum T_reference) is that of the method's
+// sums against its reference's. The reference draws one sea's glints and the methods the expected
+// glint of their BRDFs: a row of few glints is a realization's luck in one sea, and the sum over
+// seas is what measures the method there (docs/validation.md, "One sea's glints and the BRDF's
+// expected glint").
 struct SeaLine {
   std::string case_name;  // the case the seas are of (CaseResult::sea_of)
   std::string method;     // MethodResult::name
@@ -237,6 +238,12 @@ struct SeaLine {
   // sea, or, beside the basic method, by basic's). Fig. 10's right column over the seas
   // (plots/<case>_seas_<term>_rows.png).
   std::vector<double> method_rows, reference_rows;
+  // Paper 004's near-horizon metric over the same seas: their bands pooled, per bin the pixels
+  // of every sea as one set (pool_horizon_bands; the seas whose band has the first sea's bins),
+  // so that its mean is the method's bias against the reference averaged over the seas' luck and
+  // its standard deviation holds the spread within and between seas
+  // (plots/<case>_seas_<term>_horizon.png, seas_horizon.csv). No bins where no sea has a band.
+  HorizonBand horizon;
 };
 std::vector<SeaLine> summarize_seas(const Report& report);
 
@@ -264,7 +271,9 @@ std::string find_gnuplot(const ReportOptions& options = {});
 //   summary.csv, claim.csv                     summarize and fig10_claim, over the cases
 //   convergence.csv                            reference_convergence
 //   seas.csv                                   summarize_seas (its header alone without seas)
+//   seas_horizon.csv                           its pooled horizon bands, bin by bin
 //   plots/<case>_seas_<term>_rows.{dat,gp,png} the rows summed over a case's seas (fig. 10)
+//   plots/<case>_seas_<term>_horizon.{dat,gp,png}  the horizon band pooled over its seas
 //   plots/summary_<term>_height.{dat,gp,png}   row error against camera height
 // Returns the paths written, relative to `dir`. Throws ReportError.
 std::vector<std::string> write_report(const Report& report, const std::string& dir,
