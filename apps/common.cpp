@@ -106,31 +106,6 @@ std::string format_number(double value) {
   return text;
 }
 
-std::string nonfinite_report(const Image& image, const Renderer& renderer) {
-  std::string report = nonfinite_pixels(image);
-  if (report.empty()) return report;
-  const RenderStats stats = renderer.stats();
-  if (stats.method != "reference") return report;
-  const std::string per_pixel = std::to_string(stats.samples);
-  report += "; the reference's samples (" + per_pixel + " per pixel): " +
-            std::to_string(stats.reference_nonfinite_samples) + " not finite, in " +
-            std::to_string(stats.reference_nonfinite_pixels) + " pixels";
-  if (stats.reference_first_nonfinite_x < 0) return report;
-  // The first pixel with a sample that is not finite (read top-down, as the image's pixels): the
-  // first whose mean is not, since the means of finite samples are finite.
-  const int x = stats.reference_first_nonfinite_x, y = stats.reference_first_nonfinite_y;
-  report += ", " + std::to_string(stats.reference_first_nonfinite_samples) + " of " + per_pixel +
-            " at x " + std::to_string(x) + ", y " + std::to_string(y);
-  const Image sums = renderer.reference_sun_sums();
-  if (x < sums.width && y < sums.height) {
-    const float* s = sums.pixel(x, y);
-    report += "; the sun's sums there (sum omega sun, sum omega, unresolved, hidden; sr): " +
-              format_number(s[0]) + ", " + format_number(s[1]) + ", " + format_number(s[2]) +
-              ", " + format_number(s[3]);
-  }
-  return report;
-}
-
 Metadata render_metadata(const Scene& scene, const std::string& merged_json,
                          const RenderStats& stats, const Metadata& extra) {
   const auto& c = scene.camera;
@@ -161,25 +136,8 @@ Metadata render_metadata(const Scene& scene, const std::string& merged_json,
 }
 
 std::string parse_terms(const std::string& text, LightTerms& terms) {
-  terms = {false, false, false, false};
-  std::stringstream list(text);
-  int count = 0;
-  for (std::string item; std::getline(list, item, ',');) {
-    if (item == "sun")
-      terms.sun = true;
-    else if (item == "sky")
-      terms.sky = true;
-    else if (item == "sea")
-      terms.sea = true;
-    else if (item == "air")
-      terms.air = true;
-    else
-      return "--terms " + text +
-             ": expected a comma-separated subset of sun, sky, sea, air, got \"" + item + "\"";
-    ++count;
-  }
-  if (count == 0) return "--terms: expected at least one of sun, sky, sea, air";
-  return "";
+  const std::string problem = parse_light_terms(text, terms);
+  return problem.empty() ? "" : "--terms" + (text.empty() ? "" : " " + text) + ": " + problem;
 }
 
 }  // namespace thalassa::cli

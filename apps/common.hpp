@@ -57,13 +57,7 @@ class PendingOutputs {
   std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
 };
 
-// What is not finite in a rendered frame, "" when every pixel is: nonfinite_pixels(image), and
-// for the reference method how many of its samples were not finite and where, and, with its sun
-// scattered, the sun's sums at the first pixel that is not (Renderer::reference_sun_sums):
-// enough to tell a pixel's shared sun from one sample's shading.
-std::string nonfinite_report(const Image& image, const Renderer& renderer);
-
-// "sun,sky,sea,air" (any non-empty subset, any order) -> the terms; an error message otherwise.
+// --terms TEXT -> the terms (parse_light_terms); an error message naming the option otherwise.
 std::string parse_terms(const std::string& text, LightTerms& terms);
 
 // A number as the metadata print it: %.9g.

@@ -4,4 +4,5 @@
 
 #include "thalassa/validation/metrics.hpp"
 #include "thalassa/validation/report.hpp"
+#include "thalassa/validation/runner.hpp"
 #include "thalassa/validation/suite.hpp"

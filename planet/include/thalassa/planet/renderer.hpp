@@ -145,6 +145,9 @@ struct LightTerms {
   // perspective's in-scattered part; its transmittance applies to the other terms always).
   bool air = true;
 };
+// Parses "sun,sky,sea,air" (a comma-separated, non-empty subset, in any order) into `terms`;
+// returns "" or a message saying what was expected (the command line puts "--terms" before it).
+std::string parse_light_terms(std::string_view text, LightTerms& terms);
 
 // How the reference's reflected sun is integrated (ReferenceSampling). Its 0.27 degree disc would
 // need millions of point samples per pixel, so both integrate it over cells of the sea no wider
@@ -284,6 +287,14 @@ struct RendererOptions {
 // too (and throws SceneError for a sky.exr that is not a usable equirectangular HDR image); a
 // program calls it first to refuse before any GL work.
 void check_drawable(const Scene& scene, const std::string& source = "scene");
+
+class Renderer;
+
+// What is not finite in a frame `renderer` drew (`image`, its image()), "" when every pixel is:
+// nonfinite_pixels(image), and for the reference method how many of its samples were not finite
+// and where, and, with its sun scattered, the sun's sums at the first pixel that is not
+// (Renderer::reference_sun_sums): enough to tell a pixel's shared sun from one sample's shading.
+std::string nonfinite_report(const Image& image, const Renderer& renderer);
 
 class Renderer {
  public:
