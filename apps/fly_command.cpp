@@ -124,7 +124,7 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
   std::map<std::string, std::vector<double>> passes;
   std::map<std::string, int> modes;
   std::set<std::string> built;
-  int skipped = 0;
+  int skipped = 0, kept = 0;
   for (const FrameRecord& r : records) {
     if (r.skipped) {
       ++skipped;
@@ -137,6 +137,7 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
     for (const auto& [name, ms] : r.stats.passes) passes[name].push_back(ms);
     ++modes[r.stats.mode];
     built.insert(r.stats.built.begin(), r.stats.built.end());
+    kept += r.stats.sky_provider_kept ? 1 : 0;
   }
   json["backend"] = first ? first->stats.backend : "";
   json["renderer"] = first ? first->stats.renderer : "";
@@ -154,6 +155,8 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
   for (const auto& [name, ms] : passes) json["passes"][name] = median(ms);
   json["resolved_waves"] = median(waves);
   json["renderer_setup_ms"] = median(renderer_ms);
+  // Frames whose sky provider (tables, sky map, sun-zenith array) an earlier frame made.
+  json["sky_provider_kept_frames"] = kept;
   json["wall_s"] = wall_seconds;
   json["built"] = built;
   json["frames"] = nlohmann::ordered_json::array();
@@ -167,6 +170,7 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
       f["mode"] = r.stats.mode;
       f["frame_ms"] = r.stats.frame_ms;
       f["renderer_setup_ms"] = r.renderer_ms;
+      f["sky_provider_kept"] = r.stats.sky_provider_kept;
       f["wall_ms"] = r.wall_ms;
       f["resolved_waves"] = r.stats.resolved_waves;
     }
@@ -276,9 +280,10 @@ int run_fly(const FlyArgs& args) {
     return kExitRuntimeFailure;
   }
 
-  // 2. The frames: one Renderer each (the scene changes every frame). The next one is created
-  // before the last is destroyed, so that they share what is shared in the process (the
-  // atmosphere's tables).
+  // 2. The frames: one Renderer each (the scene changes every frame). They keep one sky
+  // provider while the sky is the same (its tables uploaded once, its sun-zenith array built
+  // once, its sky map again only when the sun moves: RendererOptions::sky_cache), so that a
+  // frame costs its drawing rather than its set-up.
   const Scene first_scene = flight.frame_scene(first);
   ContextOptions options;
   options.width = first_scene.image.width;
@@ -288,6 +293,7 @@ int run_fly(const FlyArgs& args) {
   // One wave chart for the whole flight (planet/nadir_frame.hpp), wherever a slice starts: the
   // lattice point under its last frame, where a flight to the surface is lowest and the waves show.
   RendererOptions renderer_options;
+  renderer_options.sky_cache = make_sky_provider_cache();
   {
     const Scene last_scene = flight.frame_scene(flight.frame_count() - 1);
     renderer_options.wave_anchor =

@@ -295,6 +295,8 @@ int run_validate(const ValidateArgs& args) {
   validation::CaseRunOptions run_options;
   run_options.dir = args.dir;
   run_options.write_exr = !args.no_exr;
+  // One sky provider for the whole run, in this context: the cases' sky is the same atmosphere.
+  run_options.sky_cache = make_sky_provider_cache();
   run_options.progress.done = [&](const std::string& item, const std::string& detail,
                                   double seconds) { bar.done(item, detail, seconds); };
   run_options.progress.skipped = [&](const std::string& item, const std::string& why) {

@@ -91,6 +91,7 @@ class AtmosphereProvider final : public SkyProvider {
     if (timer) timer->end_pass("sky.map");
     glFinish();
     sky_map_ms_ = elapsed_ms(start);
+    ++sky_map_builds_;
     map_height_ = height;
     map_sun_ = sun;
     return sky_map_.get();
@@ -117,6 +118,7 @@ class AtmosphereProvider final : public SkyProvider {
 
   const SkyMapSettings& sky_map_settings() const override { return settings_; }
   double sky_map_ms() const override { return sky_map_ms_; }
+  int sky_map_builds() const override { return sky_map_builds_; }
   double sky_map_array_ms() const override { return sky_map_array_ms_; }
   std::vector<std::pair<std::string, double>> setup_ms() const override {
     if (model_->precompute_seconds() > 0.0)
@@ -212,6 +214,7 @@ class AtmosphereProvider final : public SkyProvider {
   double map_height_ = 0.0;
   glm::dvec3 map_sun_{0.0};
   double sky_map_ms_ = 0.0, sky_map_array_ms_ = 0.0;
+  int sky_map_builds_ = 0;
 };
 
 }  // namespace

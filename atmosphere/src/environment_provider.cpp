@@ -95,6 +95,7 @@ class EnvironmentProvider final : public SkyProvider {
     set_sky_map_sampling(sky_map_.get());
     if (timer) timer->end_pass("sky.map");
     sky_map_ms_ = elapsed_ms(start);
+    ++sky_map_builds_;
     return sky_map_.get();
   }
 
@@ -126,6 +127,7 @@ class EnvironmentProvider final : public SkyProvider {
 
   const SkyMapSettings& sky_map_settings() const override { return settings_; }
   double sky_map_ms() const override { return sky_map_ms_; }
+  int sky_map_builds() const override { return sky_map_builds_; }
   double sky_map_array_ms() const override { return sky_map_array_ms_; }
   std::vector<std::pair<std::string, double>> setup_ms() const override { return {}; }
 
@@ -179,6 +181,7 @@ class EnvironmentProvider final : public SkyProvider {
   Image map_image_;
   gl::Texture panorama_, sky_map_, sky_map_array_;
   double sky_map_ms_ = 0.0, sky_map_array_ms_ = 0.0;
+  int sky_map_builds_ = 0;
 };
 
 }  // namespace

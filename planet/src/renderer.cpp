@@ -136,6 +136,11 @@ struct Renderer::Impl {
   int timer_fallbacks_before = 0;  // the compiling frame's, not counted in the statistics
   std::shared_ptr<atmosphere::SkyProvider> provider;
   double provider_ms = 0.0;   // creating the provider: tables computed or loaded, uploaded
+  // The provider came from RendererOptions::sky_cache, made by an earlier Renderer: what it had
+  // built by then (its sky map's builds, its array) was not this Renderer's cost.
+  bool provider_kept = false;
+  int sky_map_builds_before = 0;
+  bool sky_map_array_before = false;
   double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
@@ -162,7 +167,11 @@ struct Renderer::Impl {
       throw gl::GlError("this OpenGL context lacks what thalassa needs: " + missing);
     }
     const auto provider_start = std::chrono::steady_clock::now();
-    provider = make_sky_provider(scene, options);
+    provider = options.sky_cache
+                   ? options.sky_cache->provider(context, scene, options, {}, provider_kept)
+                   : make_sky_provider(scene, options);
+    sky_map_builds_before = provider->sky_map_builds();
+    sky_map_array_before = provider->sky_map_array_ms() > 0.0;
     provider_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - provider_start)
             .count();
@@ -631,12 +640,16 @@ RenderStats Renderer::stats() const {
   stats.sun_lattice_rescatters = static_cast<int>(m.node_measurement("reference_sun.rescatters"));
   for (const auto& node : m.graph.nodes())
     for (std::string& warning : node->warnings()) stats.warnings.push_back(std::move(warning));
-  stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
+  stats.sky_provider_kept = m.provider_kept;
+  if (!m.provider_kept) stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
-  for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
-  if (m.provider->sky_map_ms() > 0.0)
+  if (!m.provider_kept)
+    for (const auto& [name, ms] : m.provider->setup_ms()) stats.setup_ms.emplace_back(name, ms);
+  // The maps this Renderer built (the last build's time; a kept provider's earlier builds are
+  // another Renderer's).
+  if (m.provider->sky_map_builds() > m.sky_map_builds_before)
     stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());
-  if (m.provider->sky_map_array_ms() > 0.0)
+  if (m.provider->sky_map_array_ms() > 0.0 && !m.sky_map_array_before)
     stats.setup_ms.emplace_back("sky.map_array", m.provider->sky_map_array_ms());
   for (const auto& program : m.shaders.built_programs()) stats.built.push_back("shader:" + program);
   return stats;

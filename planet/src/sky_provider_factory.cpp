@@ -7,11 +7,18 @@
 
 namespace thalassa {
 
+namespace {
+// The radius of the sphere the sky is made for, m: the planet's, or the Earth's mean for WGS84.
+double sky_radius(const Scene& scene) {
+  return scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius
+                                                   : atmosphere::kEarthMeanRadius;
+}
+}  // namespace
+
 std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(
     const Scene& scene, const RendererOptions& options,
     const atmosphere::SkyMapSettings& settings) {
-  const double radius = scene.planet.shape == PlanetShape::Sphere ? scene.planet.radius
-                                                                  : atmosphere::kEarthMeanRadius;
+  const double radius = sky_radius(scene);
   if (!scene.sky.exr.empty()) {
     std::shared_ptr<const atmosphere::EnvironmentMap> map;
     try {
@@ -28,6 +35,31 @@ std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(
       atmosphere::AtmosphereModel::create(atmosphere::AtmosphereParameters::earth(radius),
                                           precompute),
       settings);
+}
+
+std::shared_ptr<atmosphere::SkyProvider> SkyProviderCache::provider(
+    const GlContext& context, const Scene& scene, const RendererOptions& options,
+    const atmosphere::SkyMapSettings& settings, bool& kept) {
+  const Key key{.context = &context,
+                .exr = scene.sky.exr,
+                .radius = sky_radius(scene),
+                .cache_dir = options.cache_dir,
+                .size = settings.size,
+                .layers = settings.array_layers,
+                .knee_layer = settings.array_knee_layer,
+                .max_zenith = settings.array_max_sun_zenith,
+                .knee_zenith = settings.array_knee_zenith};
+  kept = provider_ && key == key_;
+  if (!kept) {
+    provider_.reset();  // the old one's textures go before the new one's are made
+    provider_ = make_sky_provider(scene, options, settings);
+    key_ = key;
+  }
+  return provider_;
+}
+
+std::shared_ptr<SkyProviderCache> make_sky_provider_cache() {
+  return std::make_shared<SkyProviderCache>();
 }
 
 }  // namespace thalassa

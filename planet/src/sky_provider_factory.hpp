@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
 #include "thalassa/engine/scene.hpp"
@@ -17,5 +18,29 @@ namespace thalassa {
 std::shared_ptr<atmosphere::SkyProvider> make_sky_provider(
     const Scene& scene, const RendererOptions& options,
     const atmosphere::SkyMapSettings& settings = {});
+
+// RendererOptions::sky_cache (renderer.hpp): the last provider made, and what it was made for.
+class SkyProviderCache {
+ public:
+  // The cached provider when `scene`'s sky, options.cache_dir, `settings` and `context` are what
+  // it was made for (kept = true), else a new one from make_sky_provider, which replaces it.
+  std::shared_ptr<atmosphere::SkyProvider> provider(const GlContext& context, const Scene& scene,
+                                                    const RendererOptions& options,
+                                                    const atmosphere::SkyMapSettings& settings,
+                                                    bool& kept);
+
+ private:
+  struct Key {
+    const GlContext* context = nullptr;
+    std::string exr;        // sky.exr; empty: the atmosphere
+    double radius = 0.0;    // the planet's radius the sky is made for, m
+    std::string cache_dir;  // the atmosphere's table cache
+    int size = 0, layers = 0, knee_layer = 0;
+    double max_zenith = 0.0, knee_zenith = 0.0;
+    bool operator==(const Key&) const = default;
+  };
+  Key key_;
+  std::shared_ptr<atmosphere::SkyProvider> provider_;
+};
 
 }  // namespace thalassa

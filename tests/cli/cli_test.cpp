@@ -1210,6 +1210,10 @@ TEST_F(Cli, FlyWritesEveryFrameAsExrAndPng) {
   EXPECT_EQ(stats["mode"], "surface");
   EXPECT_EQ(stats["frames"].size(), 5u);
   EXPECT_GT(stats["frame_ms"].get<double>(), 0.0);
+  // One sky provider for the flight: made by the first frame, kept by the others.
+  EXPECT_EQ(stats["sky_provider_kept_frames"], 4);
+  EXPECT_EQ(stats["frames"][0]["sky_provider_kept"], false);
+  EXPECT_EQ(stats["frames"][4]["sky_provider_kept"], true);
 }
 
 TEST_F(Cli, FlyFramesRendersOnlyThatSlice) {

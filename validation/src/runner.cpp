@@ -62,7 +62,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 class CaseRunner {
  public:
   CaseRunner(const Suite& suite, GlContext& context, const CaseRunOptions& options)
-      : suite_(suite), context_(context), options_(options) {}
+      : suite_(suite),
+        context_(context),
+        options_(options),
+        sky_cache_(options.sky_cache ? options.sky_cache : make_sky_provider_cache()) {}
 
   CaseResult run(const SuiteCase& c) {
     CaseResult result;
@@ -122,6 +125,7 @@ class CaseRunner {
       scene.image.width = suite_.timing.width;
       scene.image.height = suite_.timing.height;
       RendererOptions options;
+      options.sky_cache = sky_cache_;
       options.method = *ocean::parse_method(method->method);
       options.terms = every;
       const auto start = std::chrono::steady_clock::now();
@@ -308,6 +312,7 @@ class CaseRunner {
                        const std::optional<SunLattice>& lattice,
                        const std::shared_ptr<ocean::ScatteredSunCache>& sun_cache) {
     RendererOptions options;
+    options.sky_cache = sky_cache_;
     options.reference.sun_cache = sun_cache;
     options.method = *ocean::parse_method(method.method);
     options.terms = terms;
@@ -386,6 +391,9 @@ class CaseRunner {
   const Suite& suite_;
   GlContext& context_;
   const CaseRunOptions& options_;
+  // The sky provider the case's renders keep between them (its tables uploaded once, its sky map
+  // built again only when the sun moves): the caller's, or the case's own.
+  std::shared_ptr<SkyProviderCache> sky_cache_;
 };
 
 }  // namespace

@@ -6,9 +6,11 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <string>
 
 #include "thalassa/engine/context.hpp"
+#include "thalassa/planet/renderer.hpp"
 #include "thalassa/validation/report.hpp"
 #include "thalassa/validation/suite.hpp"
 
@@ -36,6 +38,9 @@ struct CaseRunOptions {
   std::string dir;
   bool write_exr = true;  // false: the PNGs alone (thalassa validate --no-exr)
   CaseProgress progress;
+  // The sky provider kept between the renders (planet/renderer.hpp): give one to keep it from
+  // case to case too (all in `context`); none: each case keeps its own.
+  std::shared_ptr<SkyProviderCache> sky_cache;
 };
 
 // Renders case `c` of `suite` (its methods, the variants' own references, every term and the

@@ -96,9 +96,12 @@ class SkyProvider {
   // no sun was found in it).
   virtual GLuint sky_map_array(gl::ShaderLibrary& shaders, gl::GpuTimer* timer) = 0;
   virtual const SkyMapSettings& sky_map_settings() const = 0;
-  // Milliseconds spent building the last sky map and the array (0 until built).
+  // Milliseconds spent building the last sky map and the array (0 until built), and how many
+  // times the sky map has been built (a provider kept between Renderers builds it again only
+  // when the sun moves: planet/renderer.hpp, SkyProviderCache).
   virtual double sky_map_ms() const = 0;
   virtual double sky_map_array_ms() const = 0;
+  virtual int sky_map_builds() const = 0;
   // One-off costs of creating the provider, wall-clock ms by name ("atmosphere.precompute" or
   // "atmosphere.load").
   virtual std::vector<std::pair<std::string, double>> setup_ms() const = 0;
