@@ -31,6 +31,7 @@ struct RenderArgs {
   int sun_cells = 256;         // the reference's sun: most cells per pixel, squared (scattered)
   double sun_cells_per_wavelength = 16;     // the reference's sun: cells per shortest wavelength
   int sun_refine = 4;                       // the reference's sun: subcells per side near glints
+  double reference_grid_cell = 1.0;         // the reference's grid cell, pixels, [1/8, 1]
   double sun_max_cells_per_wavelength = 0;  // the reference's sun: doubled up to this (0: never)
   bool sun_swap_atomics = false;  // the reference's sun: compare-and-swap, not float atomics
   int sun_segment = 0;  // the reference's sun: cells per scatter invocation (0: the renderer's)

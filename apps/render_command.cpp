@@ -56,6 +56,7 @@ std::string stats_json(const RenderStats& stats) {
   }
   if (!stats.resolved_rows.empty()) json["resolved_rows"] = stats.resolved_rows;
   if (stats.method == "reference") {
+    json["reference_grid_cell"] = stats.reference_grid_cell;
     json["reference_nonfinite_samples"] = stats.reference_nonfinite_samples;
     json["reference_nonfinite_pixels"] = stats.reference_nonfinite_pixels;
     if (stats.reference_first_nonfinite_x >= 0)
@@ -190,6 +191,14 @@ void add_render_command(CLI::App& app, RenderArgs& args) {
                    "were N times finer where the glints are")
       ->check(CLI::Range(1, 8))
       ->capture_default_str();
+  render
+      ->add_option("--reference-grid-cell", args.reference_grid_cell,
+                   "The reference: the cell of the grid it rasterises every wave on, pixels (each "
+                   "sample's normal is exact whatever the cell; the cell decides which facets a "
+                   "crest hides inside a pixel: those behind waves of two cells and longer; "
+                   "finer costs the square in vertices)")
+      ->check(CLI::Range(ocean::kReferenceMinGridCell, ocean::kReferenceGridCell))
+      ->capture_default_str();
 }
 
 int run_render(const RenderArgs& args) {
@@ -214,6 +223,7 @@ int run_render(const RenderArgs& args) {
   renderer_options.reference.sun_cells = args.sun_cells;
   renderer_options.reference.sun_cells_per_wavelength = args.sun_cells_per_wavelength;
   renderer_options.reference.sun_refine = args.sun_refine;
+  renderer_options.reference.grid_cell = args.reference_grid_cell;
   renderer_options.reference.sun_max_cells_per_wavelength = args.sun_max_cells_per_wavelength;
   renderer_options.reference.sun_float_atomics = !args.sun_swap_atomics;
   renderer_options.reference.sun_segment = args.sun_segment;

@@ -64,9 +64,10 @@ namespace {
 // an edge vertex on screen except within a few metres of the camera).
 constexpr int kGridMarginCells = 2;
 
-// The reference's grid cell (pixels): one vertex per pixel (sec. 7.2's reference used about
-// 5 cm triangles; its normals are exact per sample here, its positions to a pixel).
-constexpr double kReferenceGridCell = 1.0;
+// The grid's margin beyond each image edge, pixels, at least: the 2 cells of kGridMarginCells
+// at the reference's default one-pixel cells, whatever its cells (OceanNodeOptions::
+// reference_grid_cell).
+constexpr double kGridMarginPixels = 2.0;
 
 // The most cells per stratum side shaders/ocean/reference_sun.glsl's row buffer holds (the
 // gathered sun), and the square root of the most per pixel's footprint of the scattered sun's
@@ -605,9 +606,12 @@ class OceanNode final : public gl::Node {
     return defines;
   }
 
-  // The grid's cell (pixels): the scene's, or for the reference kReferenceGridCell.
+  // The grid's cell (pixels): the scene's, or the reference's (one vertex per pixel by default:
+  // sec. 7.2's reference used about 5 cm triangles; its normals are exact per sample here, its
+  // positions to a cell, so that a crest inside a pixel hides what it covers only for waves of
+  // two cells and longer).
   double grid_cell() const {
-    return options_.method == OceanMethod::reference ? kReferenceGridCell
+    return options_.method == OceanMethod::reference ? options_.reference_grid_cell
                                                      : options_.settings.grid_cell;
   }
 
@@ -649,7 +653,9 @@ class OceanNode final : public gl::Node {
     const double cell = grid_cell();
     if (!(grid_key_ && grid_key_->camera == camera && grid_key_->cell_px == cell)) {
       grid_key_.reset();  // until the new grid is in the buffers
-      const ProjectedGrid grid = make_projected_grid(camera, cell, kGridMarginCells);
+      const int margin =
+          std::max(kGridMarginCells, static_cast<int>(std::ceil(kGridMarginPixels / cell)));
+      const ProjectedGrid grid = make_projected_grid(camera, cell, margin);
       grid_index_count_ = grid.indices.size();
       if (grid.rows > 0) upload_grid(grid);
       grid_key_ = GridKey{camera, cell};

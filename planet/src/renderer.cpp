@@ -217,7 +217,8 @@ struct Renderer::Impl {
             r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_block_rows >= 0 &&
             r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows && r.sun_refined_queue >= -1 &&
             r.sun_refined_queue <= ocean::kReferenceMaxSunRefinedQueue &&
-            r.sun_cells_per_wavelength >= 1.0 &&
+            r.grid_cell >= ocean::kReferenceMinGridCell &&
+            r.grid_cell <= ocean::kReferenceGridCell && r.sun_cells_per_wavelength >= 1.0 &&
             r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
             (r.sun_max_cells_per_wavelength == 0.0 ||
              (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
@@ -230,7 +231,7 @@ struct Renderer::Impl {
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
             "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
             std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
+            "], grid_cell in [0.125, 1], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
             std::to_string(ocean::kReferenceMaxSunCells) + "], sun_block_rows in [0, " +
             std::to_string(ocean::kReferenceMaxSunBlockRows) + "] and sun_refined_queue in [-1, " +
             std::to_string(ocean::kReferenceMaxSunRefinedQueue) + "]");
@@ -249,6 +250,7 @@ struct Renderer::Impl {
            .reference_sun_cells = reference_sun_cells(options.reference),
            .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
            .reference_sun_refine = options.reference.sun_refine,
+           .reference_grid_cell = options.reference.grid_cell,
            .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
            .reference_measure_lattice = options.reference.measure_lattice,
            .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
@@ -603,8 +605,11 @@ RenderStats Renderer::stats() const {
   stats.samples = m.samples;
   stats.sample_row_change = m.sample_row_change;
   stats.sample_row_changes = m.sample_row_changes;
-  if (m.renderer_options.method == ocean::OceanMethod::reference && m.renderer_options.terms.sun)
-    stats.reference_sun = reference_sun_name(m.renderer_options.reference.sun);
+  if (m.renderer_options.method == ocean::OceanMethod::reference) {
+    stats.reference_grid_cell = m.renderer_options.reference.grid_cell;
+    if (m.renderer_options.terms.sun)
+      stats.reference_sun = reference_sun_name(m.renderer_options.reference.sun);
+  }
   stats.resolved_rows = m.resolved_rows;
   stats.reference_nonfinite_samples = m.nonfinite_samples;
   stats.reference_nonfinite_pixels = m.nonfinite_pixels;

@@ -283,7 +283,8 @@ TEST_F(Cli, MethodsRenderAndSayWhichTheyAre) {
   for (const std::string& past : std::vector<std::string>{
            "--sun-cells-per-wavelength 129", "--sun-max-cells-per-wavelength 129",
            "--sun-cells 16385", "--sun-segment 16385", "--sun-segment -1", "--sun-block-rows 9",
-           "--sun-refined-queue -2", "--sun-refined-queue 4194241"}) {
+           "--sun-refined-queue -2", "--sun-refined-queue 4194241", "--reference-grid-cell 0.1",
+           "--reference-grid-cell 2"}) {
     const Result refused = run("render " + kSmall + " --method reference " + past + " -o past.exr");
     EXPECT_EQ(refused.status, 2) << past;
     EXPECT_NE(refused.err.find(past.substr(0, past.find(' '))), std::string::npos) << refused.err;

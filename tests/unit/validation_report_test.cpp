@@ -123,6 +123,7 @@ Report synthetic_report() {
   report.reference.sun_cells_per_wavelength = 12.5;
   report.reference.sun = "gathered";  // not the default: read back as written
   report.reference.sun_refine = 4;
+  report.reference.grid_cell = 0.25;
   report.reference.sun_max_cells_per_wavelength = 25.0;
   report.version = "0.1.0";
   CaseResult c;
@@ -398,6 +399,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
   EXPECT_EQ(back.reference.sun_cells_per_wavelength, report.reference.sun_cells_per_wavelength);
   EXPECT_EQ(back.reference.sun, report.reference.sun);
   EXPECT_EQ(back.reference.sun_refine, report.reference.sun_refine);
+  EXPECT_EQ(back.reference.grid_cell, report.reference.grid_cell);
   EXPECT_EQ(back.reference.sun_max_cells_per_wavelength,
             report.reference.sun_max_cells_per_wavelength);
   EXPECT_EQ(back.timing, report.timing);

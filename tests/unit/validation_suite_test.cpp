@@ -429,6 +429,15 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
                           R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
   EXPECT_EQ(far.reference.sun_cells(), 16384);
   EXPECT_NE(case_fingerprint(far, far.cases[0], env), a);
+  // The reference's grid: a finer one changes it; the one-pixel grid, named or not, does not
+  // (the reports before stop 44 were drawn on it).
+  const Suite finer_grid = suite(R"({"pixel_samples": 8, "grid_cell": 0.25})",
+                                 R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
+  EXPECT_EQ(finer_grid.reference.grid_cell, 0.25);
+  EXPECT_NE(case_fingerprint(finer_grid, finer_grid.cases[0], env), a);
+  const Suite pixel_grid = suite(R"({"pixel_samples": 8, "grid_cell": 1})",
+                                 R"({"ocean.waves": 30})", R"({"ocean.wind_speed": 9})", "one");
+  EXPECT_EQ(case_fingerprint(pixel_grid, pixel_grid.cases[0], env), a);
   const Suite other_method = suite(R"({"pixel_samples": 8})", R"({"ocean.waves": 120})",
                                    R"({"ocean.wind_speed": 9})", "one");
   EXPECT_NE(case_fingerprint(other_method, other_method.cases[0], env), a);
@@ -621,6 +630,10 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
        "t.json: reference.sun: expected \"scattered\" or \"gathered\", got \"sampled\""},
       {R"({"suite": "s", "reference": {"sun_refine": 9}, "cases": [)" + ok_case + "]}",
        "t.json: reference.sun_refine: expected an integer in [1, 8], got 9"},
+      {R"({"suite": "s", "reference": {"grid_cell": 0.1}, "cases": [)" + ok_case + "]}",
+       "t.json: reference.grid_cell: expected a number in [0.125, 1] (pixels), got 0.1"},
+      {R"({"suite": "s", "reference": {"grid_cell": "fine"}, "cases": [)" + ok_case + "]}",
+       "t.json: reference.grid_cell: expected a number in [0.125, 1] (pixels), got \"fine\""},
       // (16384^2: the scatter's most cells per pixel.)
       {R"({"suite": "s", "reference": {"sun_normal_samples": 268435457}, "cases": [)" + ok_case +
            "]}",

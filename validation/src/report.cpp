@@ -17,6 +17,7 @@
 
 #include "thalassa/engine/file_io.hpp"
 #include "thalassa/engine/program.hpp"
+#include "thalassa/ocean/method.hpp"
 
 namespace thalassa::validation {
 namespace {
@@ -1021,7 +1022,8 @@ std::string index_html(const Report& report, const std::vector<SeaLine>& seas,
                   short_number(report.reference.sun_max_cells_per_wavelength) +
                   " of the shortest wavelength"
             : std::string()) +
-       ".</p>\n";
+       "; every wave rasterised on a grid of " + short_number(report.reference.grid_cell) +
+       "-pixel cells.</p>\n";
   if (report.suite_cases > static_cast<int>(report.cases.size()))
     h += "<p class=\"fail\">A part of the suite: " + std::to_string(report.cases.size()) +
          " of its " + std::to_string(report.suite_cases) +
@@ -1443,10 +1445,10 @@ std::string report_json(const Report& report) {
                     {"pixel_samples_without_sun", report.reference.pixel_samples_without_sun},
                     {"sun_normal_samples", report.reference.sun_normal_samples},
                     {"sun_cells_per_wavelength", report.reference.sun_cells_per_wavelength},
-                    {"sun_max_cells_per_wavelength",
-                     report.reference.sun_max_cells_per_wavelength},
+                    {"sun_max_cells_per_wavelength", report.reference.sun_max_cells_per_wavelength},
                     {"sun", report.reference.sun},
                     {"sun_refine", report.reference.sun_refine},
+                    {"grid_cell", report.reference.grid_cell},
                     {"check_convergence", report.reference.check_convergence}};
   j["suite_cases"] = std::max(report.suite_cases, static_cast<int>(report.cases.size()));
   j["cases"] = ojson::array();
@@ -1578,6 +1580,9 @@ Report report_from_json(const std::string& json_text) {
         jr.contains("sun_max_cells_per_wavelength")
             ? get_number(jr.at("sun_max_cells_per_wavelength"))
             : 0.0;
+    // One vertex per pixel before stop 44.
+    report.reference.grid_cell =
+        jr.contains("grid_cell") ? get_number(jr.at("grid_cell")) : ocean::kReferenceGridCell;
     report.reference.check_convergence = jr.at("check_convergence");
   }
   for (const ojson& jc : j.at("cases")) {

@@ -324,6 +324,7 @@ class CaseRunner {
     options.reference.sun_cells_per_wavelength = reference.sun_cells_per_wavelength;
     options.reference.sun = *parse_reference_sun(reference.sun);  // the suite's parser checked
     options.reference.sun_refine = reference.sun_refine;
+    options.reference.grid_cell = reference.grid_cell;
     options.reference.sun_max_cells_per_wavelength = reference.sun_max_cells_per_wavelength;
     const auto draw = [&](const SunLattice& drawn) {
       options.reference.sun_cells_per_wavelength = drawn.cells_per_wavelength;

@@ -366,7 +366,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
       fail(source, "reference",
            "an object {\"pixel_samples\", \"pixel_samples_without_sun\", "
            "\"sun_normal_samples\", \"sun_cells_per_wavelength\", "
-           "\"sun_max_cells_per_wavelength\", \"sun\", \"sun_refine\", "
+           "\"sun_max_cells_per_wavelength\", \"sun\", \"sun_refine\", \"grid_cell\", "
            "\"check_convergence\"}",
            describe(r));
     static constexpr std::string_view kReferenceKeys[] = {"pixel_samples",
@@ -376,6 +376,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
                                                           "sun_max_cells_per_wavelength",
                                                           "sun",
                                                           "sun_refine",
+                                                          "grid_cell",
                                                           "check_convergence"};
     only_known(r, kReferenceKeys, source, "reference.");
     if (r.contains("pixel_samples"))
@@ -417,6 +418,10 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     if (r.contains("sun_refine"))
       suite.reference.sun_refine =
           integer_at(r["sun_refine"], source, "reference.sun_refine", 1, 8);
+    if (r.contains("grid_cell"))
+      suite.reference.grid_cell =
+          number_at(r["grid_cell"], source, "reference.grid_cell", ocean::kReferenceMinGridCell,
+                    ocean::kReferenceGridCell, "pixels", false);
     if (r.contains("check_convergence"))
       suite.reference.check_convergence =
           bool_at(r["check_convergence"], source, "reference.check_convergence");
@@ -645,6 +650,8 @@ std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string
   // Only when set, so that the reports of suites that never double keep their fingerprints.
   if (r.sun_max_cells_per_wavelength > 0.0)
     inputs["reference"]["sun_max_cells_per_wavelength"] = r.sun_max_cells_per_wavelength;
+  // Likewise only when finer than the one-pixel grid every report before stop 44 was drawn on.
+  if (r.grid_cell != ocean::kReferenceGridCell) inputs["reference"]["grid_cell"] = r.grid_cell;
   inputs["horizon"] = {{"depth_deg", suite.horizon.depth_deg}, {"bin_deg", suite.horizon.bin_deg}};
   inputs["expected_exit"] = c.expected_exit;
   inputs["expected_error"] = c.expected_error;

@@ -54,6 +54,11 @@ inline constexpr int kReferenceMaxSunBlockRows = 8;
 // 42; 16 bytes each, 64 MiB): the refined cells of one chunk of its cells' pass, one invocation
 // each of a dispatch of at most 65535 work groups of 64 (GL's least guaranteed work-group count).
 inline constexpr std::int64_t kReferenceMaxSunRefinedQueue = std::int64_t(65535) * 64;
+// The reference's grid cell, pixels (ReferenceSampling::grid_cell): its vertices one per pixel by
+// default, down to this many per pixel side, so that a crest hides what lies behind it inside
+// a pixel for waves down to two cells (stop 44, docs/validation.md).
+inline constexpr double kReferenceGridCell = 1.0;
+inline constexpr double kReferenceMinGridCell = 0.125;
 // The most samples per pixel a reference may double to (issue 6, point 1): the 20 m/s sea's sky
 // at 4 m still moved a row by 1.2 % between 2,048 and 4,096 (stop 28, docs/validation.md).
 inline constexpr int kReferenceMaxPixelSamples = 16384;

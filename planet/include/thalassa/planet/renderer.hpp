@@ -137,6 +137,8 @@ struct RenderStats {
   std::vector<std::pair<std::string, double>> setup_ms;
   // The sky provider came from RendererOptions::sky_cache, made by an earlier Renderer.
   bool sky_provider_kept = false;
+  // The reference: its grid's cell, pixels (ReferenceSampling::grid_cell); 0 for the others.
+  double reference_grid_cell = 0.0;
 };
 
 // The ocean's light terms (Bruneton et al. 2010 sec. 5): all by default; validation renders
@@ -211,6 +213,11 @@ struct ReferenceSampling {
   // cut into sun_refine x sun_refine subcells, [1, 8] (1: none), as if the lattice were that much
   // finer where the glints are (shaders/ocean/reference_sun_scatter.comp, ScatterCell).
   int sun_refine = 4;
+  // The grid the reference rasterises every wave on: its cell in pixels, [1/8, 1]
+  // (ocean::kReferenceMinGridCell). Each sample's normal is exact whatever the cell; the cell
+  // decides the positions, so which facets a crest hides inside a pixel: those behind waves of
+  // two cells and longer. Finer costs the square in vertices (docs/validation.md, stop 44).
+  double grid_cell = ocean::kReferenceGridCell;
   // Scattered: also scatter the lattice of half the cells, whose difference is the sun's
   // convergence (RenderStats::sun_lattice_row_change; about a third more time). Off, the
   // statistics report no lattice rows (sun_lattice_rows 0): for frames whose convergence is

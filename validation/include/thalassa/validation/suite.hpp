@@ -130,6 +130,10 @@ struct ReferenceSettings {
   // Scattered: subcells per side of the cells whose slopes come near the mirror slope, [1, 8]
   // (1: none; ReferenceSampling::sun_refine).
   int sun_refine = 4;
+  // The cell of the grid the reference rasterises every wave on, pixels, [1/8, 1]
+  // (ReferenceSampling::grid_cell): where waves shorter than a pixel's footprint raise crests
+  // inside it (near the horizon) a finer grid hides what they hide (docs/validation.md, stop 44).
+  double grid_cell = 1.0;
   // Scattered: while the lattice moves a compared row by 1 % or more against half its cells, it
   // doubles its cells up to this many per wavelength, [sun_cells_per_wavelength, 128]; 0: never
   // (ReferenceSampling::sun_max_cells_per_wavelength).

@@ -48,6 +48,8 @@ struct OceanNodeOptions {
   // With the scatter: each cell whose slopes come near the mirror slope is cut into this many
   // subcells per side, [1, 8] (1: none; reference_sun_scatter.comp, ScatterCell).
   int reference_sun_refine = 4;
+  // The reference's grid cell, pixels, [kReferenceMinGridCell, 1] (ocean/method.hpp).
+  double reference_grid_cell = kReferenceGridCell;
   bool reference_sun_scatter = true;
   // With the scatter: also the lattice of half the cells, for its convergence (ReferenceSampling::
   // measure_lattice).
