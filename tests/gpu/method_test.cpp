@@ -387,8 +387,8 @@ std::vector<double> green_row_totals(const Image& image) {
 // down, whose far footprints are a third of the shortest wave, 1.8 %); the statistics say
 // the cell, and a cell outside [1/8, 1] is refused. Where waves shorter than a pixel's footprint
 // raise crests inside a pixel (near the horizon), the finer grid hides what they hide
-// (docs/validation.md, stop 44: 4 m over the 20 m/s sea, the horizon band's sky 9.7 % darker at
-// quarter-pixel cells).
+// (docs/validation.md, stop 44: 4 m over the 20 m/s sea, the one-pixel grid's horizon band of
+// sky 11 % brighter than an eighth-pixel grid's, a quarter-pixel grid's 1.5 %).
 TEST(OceanMethods, ReferenceGridCellMovesNothingWhereEveryWaveIsManyPixelsLong) {
   auto context = test::make_test_context();
   Scene scene = test::scene_from(R"({
