@@ -51,7 +51,9 @@ std::shared_ptr<atmosphere::SkyProvider> SkyProviderCache::provider(
                 .knee_zenith = settings.array_knee_zenith};
   kept = provider_ && key == key_;
   if (!kept) {
-    provider_.reset();  // the old one's textures go before the new one's are made
+    // Let go of the old one first: where no Renderer holds it any more, its textures go before
+    // the new one's are made.
+    provider_.reset();
     provider_ = make_sky_provider(scene, options, settings);
     key_ = key;
   }

@@ -282,7 +282,9 @@ struct ReferenceSampling {
 // validation case) upload its tables once, build its sun-zenith array once (the view from 10 km
 // up: 2.3 s on llvmpipe at 512^2 x 32), and build its sky map again only when the sun moves.
 // It holds one provider: that of the last scene whose sky (sky.exr, or the atmosphere for the
-// planet's radius), table cache folder and GL context differ from the one before is made anew.
+// planet's radius), table cache folder and GL context differ from the one before is made anew
+// (a sky.exr is read once: a file rewritten under the same path is not read again while the
+// cache holds its provider).
 // Give one cache only to Renderers used one after another, or on one thread; its textures live
 // in the context that made them, which must outlive the cache (the cache keys on the context's
 // address, so a later context at that address would not be told apart).
