@@ -44,11 +44,7 @@ std::shared_ptr<atmosphere::SkyProvider> SkyProviderCache::provider(
                 .exr = scene.sky.exr,
                 .radius = sky_radius(scene),
                 .cache_dir = options.cache_dir,
-                .size = settings.size,
-                .layers = settings.array_layers,
-                .knee_layer = settings.array_knee_layer,
-                .max_zenith = settings.array_max_sun_zenith,
-                .knee_zenith = settings.array_knee_zenith};
+                .settings = settings};
   kept = provider_ && key == key_;
   if (!kept) {
     // Let go of the old one first: where no Renderer holds it any more, its textures go before

@@ -35,8 +35,7 @@ class SkyProviderCache {
     std::string exr;        // sky.exr; empty: the atmosphere
     double radius = 0.0;    // the planet's radius the sky is made for, m
     std::string cache_dir;  // the atmosphere's table cache
-    int size = 0, layers = 0, knee_layer = 0;
-    double max_zenith = 0.0, knee_zenith = 0.0;
+    atmosphere::SkyMapSettings settings;
     bool operator==(const Key&) const = default;
   };
   Key key_;

@@ -386,6 +386,15 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
   return band;
 }
 
+bool same_horizon_bins(const HorizonBand& a, const HorizonBand& b) {
+  if (a.bins.size() != b.bins.size()) return false;
+  for (std::size_t k = 0; k < a.bins.size(); ++k)
+    if (a.bins[k].beta_lo_deg != b.bins[k].beta_lo_deg ||
+        a.bins[k].beta_hi_deg != b.bins[k].beta_hi_deg)
+      return false;
+  return true;
+}
+
 // Per bin, the pixels of every band as one set: with W_i, m_i, s_i and r_i band i's weight,
 // mean, standard deviation and reference mean there, the set's weight is W = sum W_i, its mean
 // m = sum W_i m_i / W, its variance sum W_i (s_i^2 + (m_i - m)^2) / W (each band's spread about
@@ -400,11 +409,7 @@ HorizonBand pool_horizon_bands(std::span<const HorizonBand> bands) {
   }
   const std::vector<HorizonBin>& first = bands.front().bins;
   for (const HorizonBand& band : bands) {
-    bool same = band.bins.size() == first.size();
-    for (std::size_t k = 0; same && k < first.size(); ++k)
-      same = band.bins[k].beta_lo_deg == first[k].beta_lo_deg &&
-             band.bins[k].beta_hi_deg == first[k].beta_hi_deg;
-    if (!same)
+    if (!same_horizon_bins(band, bands.front()))
       throw std::invalid_argument(
           "pool_horizon_bands: expected bands of the same bins (depth and bin width), got " +
           std::to_string(first.size()) + " and " + std::to_string(band.bins.size()) + " bins");

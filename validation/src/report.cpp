@@ -1250,15 +1250,7 @@ SummedRows summed_rows(const std::vector<const CaseResult*>& seas, const std::st
     sums.own_row_errors.push_back(total > 0.0 ? error / total : kNaN);
     ++sums.seas;
     const HorizonBand& band = t->metrics.horizon;
-    const auto same_bins = [&](const HorizonBand& other) {
-      if (other.bins.size() != band.bins.size()) return false;
-      for (std::size_t k = 0; k < band.bins.size(); ++k)
-        if (other.bins[k].beta_lo_deg != band.bins[k].beta_lo_deg ||
-            other.bins[k].beta_hi_deg != band.bins[k].beta_hi_deg)
-          return false;
-      return true;
-    };
-    if (!band.bins.empty() && (sums.bands.empty() || same_bins(sums.bands.front())))
+    if (!band.bins.empty() && (sums.bands.empty() || same_horizon_bins(band, sums.bands.front())))
       sums.bands.push_back(band);
   }
   return sums;
@@ -1705,16 +1697,21 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
     }
     written.push_back(name);
   };
-  // Plots first: index.html links them, and is written last.
+  // Plots first: index.html links them, and is written last. A plot drawn (png not empty): its
+  // three files written, and its link under `title`.
+  const auto add_plot = [&](std::vector<std::pair<std::string, std::string>>& links,
+                            const std::string& title, const std::string& png) {
+    if (png.empty()) return;
+    const std::string stem = png.substr(0, png.size() - 4);
+    for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
+    links.push_back({title, "plots/" + png});
+  };
   std::vector<std::vector<std::pair<std::string, std::string>>> plot_links;
   try {
     for (const CaseResult& c : report.cases) {
       auto& links = plot_links.emplace_back();
       const auto add = [&](const std::string& title, const std::string& png) {
-        if (png.empty()) return;
-        const std::string stem = png.substr(0, png.size() - 4);
-        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
-        links.push_back({title, "plots/" + png});
+        add_plot(links, title, png);
       };
       if (c.methods.empty()) continue;
       for (const std::string& term : case_terms(c))
@@ -1735,11 +1732,8 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
       for (const std::string& term : case_terms(c))
         if (std::find(terms.begin(), terms.end(), term) == terms.end()) terms.push_back(term);
     for (const std::string& term : terms) {
-      const std::string png = summary_height_plot(gnuplot, plots, report, term, options);
-      if (png.empty()) continue;
-      const std::string stem = png.substr(0, png.size() - 4);
-      for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
-      summary_links.push_back({term + ": mean row deviation against height", "plots/" + png});
+      add_plot(summary_links, term + ": mean row deviation against height",
+               summary_height_plot(gnuplot, plots, report, term, options));
     }
   } catch (const FileError& e) {
     throw ReportError(e.what());
@@ -1764,13 +1758,11 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
       for (const SeaLine& l : seas)
         if (l.case_name == case_name && l.term == term && !own_reference(l)) lines.push_back(&l);
       const std::string png = seas_rows_plot(gnuplot, plots, case_name, term, lines, options);
-      if (!png.empty()) {
-        const std::string stem = png.substr(0, png.size() - 4);
-        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
-        summary_links.push_back({case_name + " " + term + ": per-row radiance summed over " +
-                                     std::to_string(lines.front()->seas) + " seas",
-                                 "plots/" + png});
-      }
+      if (!png.empty())  // then lines holds a line
+        add_plot(summary_links,
+                 case_name + " " + term + ": per-row radiance summed over " +
+                     std::to_string(lines.front()->seas) + " seas",
+                 png);
       std::vector<std::pair<std::string, const HorizonBand*>> bands;
       int most_seas = 0;
       for (const SeaLine& l : seas)
@@ -1778,17 +1770,13 @@ std::vector<std::string> write_report(const Report& report, const std::string& d
           bands.push_back({l.method, &l.horizon});
           most_seas = std::max(most_seas, l.seas);
         }
-      const std::string horizon_png = horizon_bands_plot(
-          gnuplot, plots, case_name + "_seas_" + term + "_horizon",
-          case_name + ", " + term + ", " + std::to_string(most_seas) + " seas pooled", bands,
-          options);
-      if (!horizon_png.empty()) {
-        const std::string stem = horizon_png.substr(0, horizon_png.size() - 4);
-        for (const char* ext : {".dat", ".gp", ".png"}) written.push_back("plots/" + stem + ext);
-        summary_links.push_back({case_name + " " + term + ": near the horizon over " +
-                                     std::to_string(most_seas) + " seas",
-                                 "plots/" + horizon_png});
-      }
+      add_plot(
+          summary_links,
+          case_name + " " + term + ": near the horizon over " + std::to_string(most_seas) + " seas",
+          horizon_bands_plot(
+              gnuplot, plots, case_name + "_seas_" + term + "_horizon",
+              case_name + ", " + term + ", " + std::to_string(most_seas) + " seas pooled", bands,
+              options));
     }
   } catch (const FileError& e) {
     throw ReportError(e.what());

@@ -227,6 +227,9 @@ HorizonBand horizon_band(const Image& method, const Image& reference, const View
 // bands of disjoint `compared` masks are the band of their union (to rounding). The bins must be
 // the same in every band (std::invalid_argument otherwise); an empty span gives no bins and NaN.
 HorizonBand pool_horizon_bands(std::span<const HorizonBand> bands);
+// Whether two bands have the same bins (the same angles, from the same depth and bin width), so
+// that they pool.
+bool same_horizon_bins(const HorizonBand& a, const HorizonBand& b);
 
 // ---------------------------------------------------------------------------------------------
 // Temporal flicker.

@@ -54,6 +54,7 @@ struct SkyMapSettings {
   // tests/gpu/sky_provider_test.cpp; docs/atmosphere.md).
   double array_knee_zenith = 80.0 * 3.14159265358979323846 / 180.0;  // rad
   int array_knee_layer = 11;
+  bool operator==(const SkyMapSettings&) const = default;
 };
 
 // The sun zenith angle (rad) of a (fractional) layer of the array, and its inverse (clamped to
