@@ -46,6 +46,11 @@ SceneGraph::SceneGraph() : frame_uniforms_(make_buffer()), empty_vao_(make_verte
 
 void SceneGraph::add(std::unique_ptr<Node> node) { nodes_.push_back(std::move(node)); }
 
+std::vector<std::unique_ptr<Node>> SceneGraph::set_nodes(std::vector<std::unique_ptr<Node>> nodes) {
+  nodes_.swap(nodes);
+  return nodes;
+}
+
 void SceneGraph::render(const FrameInputs& inputs, HdrTarget& target, ShaderLibrary& shaders,
                         GpuTimer& timer) {
   const FrameUniforms uniforms = make_frame_uniforms(inputs);

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -215,7 +216,11 @@ GLuint ShaderLibrary::compile(GLenum stage, const std::string& path, const Defin
 
 GLuint ShaderLibrary::program(const ProgramDesc& desc) {
   const std::string key = describe(desc);
-  if (auto it = programs_.find(key); it != programs_.end()) return it->second.get();
+  if (auto it = programs_.find(key); it != programs_.end()) {
+    it->second.last_use = use_record_;
+    return it->second.name.get();
+  }
+  const auto start = std::chrono::steady_clock::now();
   std::vector<ShaderName> shaders;
   if (!desc.compute.empty()) {
     shaders.emplace_back(compile(GL_COMPUTE_SHADER, desc.compute, desc.defines));
@@ -239,13 +244,22 @@ GLuint ShaderLibrary::program(const ProgramDesc& desc) {
   }
   for (const auto& shader : shaders) glDetachShader(program.get(), shader.get());
   const GLuint name = program.get();
-  programs_.emplace(key, std::move(program));
+  programs_.emplace(key, Program{std::move(program), use_record_});
+  compile_ms_ +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return name;
 }
 
 std::vector<std::string> ShaderLibrary::built_programs() const {
   std::vector<std::string> keys;
   for (const auto& entry : programs_) keys.push_back(entry.first);
+  return keys;
+}
+
+std::vector<std::string> ShaderLibrary::used_programs() const {
+  std::vector<std::string> keys;
+  for (const auto& [key, program] : programs_)
+    if (program.last_use == use_record_) keys.push_back(key);
   return keys;
 }
 

@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <variant>
 
 #include "reference_accumulator.hpp"
 #include "sky_provider_factory.hpp"
@@ -100,6 +101,91 @@ int reference_sun_cells(const ReferenceSampling& r) {
   return std::clamp((r.sun_cells + strata - 1) / strata, 1, 64);
 }
 
+// The options a node of the graph was made with, to tell whether the next scene can keep it
+// (Renderer::set_scene): each node's options compare whole, the sky provider and the wakes and
+// calm areas placed in view by the objects they point to.
+using NodeOptions =
+    std::variant<atmosphere::SkyNodeOptions, SpaceOceanNodeOptions, ocean::OceanNodeOptions>;
+struct NodeRecipe {
+  NodeOptions options;
+  const atmosphere::SkyProvider* provider = nullptr;  // the sky node's (the others hold theirs)
+  bool operator==(const NodeRecipe&) const = default;
+};
+
+std::unique_ptr<gl::Node> make_node(const NodeRecipe& recipe,
+                                    const std::shared_ptr<atmosphere::SkyProvider>& provider) {
+  if (const auto* sky = std::get_if<atmosphere::SkyNodeOptions>(&recipe.options))
+    return atmosphere::make_sky_node(*sky, provider);
+  if (const auto* space = std::get_if<SpaceOceanNodeOptions>(&recipe.options))
+    return make_space_ocean_node(*space);
+  return ocean::make_ocean_node(std::get<ocean::OceanNodeOptions>(recipe.options));
+}
+
+// The features a recipe's node draws; null for the sky.
+std::shared_ptr<const ocean::LocalFeatures>* recipe_features(NodeRecipe& recipe) {
+  if (auto* space = std::get_if<SpaceOceanNodeOptions>(&recipe.options)) return &space->features;
+  if (auto* surface = std::get_if<ocean::OceanNodeOptions>(&recipe.options))
+    return &surface->features;
+  return nullptr;
+}
+
+double milliseconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+// Throws std::invalid_argument for reference settings out of their ranges (ReferenceSampling).
+void check_reference_sampling(const ReferenceSampling& r) {
+  if (r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
+      r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells && r.sun_max_cells >= 1 &&
+      r.sun_max_cells <= ocean::kReferenceMaxSunCells && r.sun_batch_invocations >= 1 &&
+      r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch && r.sun_segment >= 0 &&
+      r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_block_rows >= 0 &&
+      r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows && r.sun_refined_queue >= -1 &&
+      r.sun_refined_queue <= ocean::kReferenceMaxSunRefinedQueue &&
+      r.grid_cell >= ocean::kReferenceMinGridCell && r.grid_cell <= ocean::kReferenceGridCell &&
+      r.sun_cells_per_wavelength >= 1.0 &&
+      r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
+      (r.sun_max_cells_per_wavelength == 0.0 ||
+       (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
+        r.sun_max_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength)))
+    return;
+  throw std::invalid_argument(
+      "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
+      "sun_cells in [1, " +
+      std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [1, " +
+      std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
+      std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
+      "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
+      std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
+      "], grid_cell in [0.125, 1], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
+      std::to_string(ocean::kReferenceMaxSunCells) + "], sun_block_rows in [0, " +
+      std::to_string(ocean::kReferenceMaxSunBlockRows) + "] and sun_refined_queue in [-1, " +
+      std::to_string(ocean::kReferenceMaxSunRefinedQueue) + "]");
+}
+
+// Everything that follows from one scene, made before any of it replaces the last scene's, so
+// that a scene that cannot be drawn leaves the Renderer as it was (Renderer::set_scene).
+struct StagedScene {
+  Scene scene;
+  NadirFrame nadir;
+  gl::FrameInputs inputs;
+  std::shared_ptr<atmosphere::SkyProvider> provider;
+  bool provider_kept = false;
+  double provider_ms = 0.0;
+  int sky_map_builds_before = 0;
+  bool sky_map_array_before = false;
+  double features_ms = -1.0;
+  // Made only where the image's size changed (the accumulator: for the reference method).
+  std::optional<gl::HdrTarget> target;
+  std::optional<ReferenceAccumulator> accumulator;
+  // The graph, in drawing order: each node's recipe, and the node made for it, or null where
+  // the last scene's node of the same recipe (kept[i], its index there) is kept.
+  std::vector<NodeRecipe> recipes;
+  std::vector<std::unique_ptr<gl::Node>> made;
+  std::vector<int> kept;
+};
+
 }  // namespace
 
 std::optional<ReferenceSun> parse_reference_sun(std::string_view name) {
@@ -121,149 +207,210 @@ void check_drawable(const Scene& scene, const std::string& source) {
 
 struct Renderer::Impl {
   GlContext& context;
+  RendererOptions renderer_options;
+  ReferenceSampling reference;
+  gl::ShaderLibrary shaders;
+  GlInfo info;
+  gl::GpuTimer timer;
+  std::shared_ptr<SkyProviderCache> sky_cache;  // the options', or the Renderer's own
+  // The scene drawn, and what follows from it (StagedScene).
   Scene scene;
   NadirFrame nadir;
   gl::FrameInputs inputs;
-  gl::ShaderLibrary shaders;
   gl::HdrTarget target;
   gl::SceneGraph graph;
-  GlInfo info;
+  std::vector<NodeRecipe> recipes;      // graph.nodes()[i] was made from recipes[i]
+  std::vector<std::string> kept_nodes;  // RenderStats::kept_nodes
   std::vector<double> frame_ms;
   std::map<std::string, std::vector<double>> pass_ms;
   std::vector<std::string> pass_order;
   gl::VertexArray present_vao;
-  gl::GpuTimer timer;
   int timer_fallbacks_before = 0;  // the compiling frame's, not counted in the statistics
   std::shared_ptr<atmosphere::SkyProvider> provider;
   double provider_ms = 0.0;   // creating the provider: tables computed or loaded, uploaded
-  // The provider came from RendererOptions::sky_cache, made by an earlier Renderer: what it had
-  // built by then (its sky map's builds, its array) was not this Renderer's cost.
+  // The provider came from the sky cache, made for an earlier Renderer or scene: what it had
+  // built by then (its sky map's builds, its array) was not this scene's cost.
   bool provider_kept = false;
   int sky_map_builds_before = 0;
   bool sky_map_array_before = false;
   double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
+  double set_scene_ms = -1.0;      // set_scene's own time; < 0: the constructor's scene
+  double compile_ms_before = 0.0;  // the shader library's compile time when the scene was set
 
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
-        scene(scene_),
-        nadir(make_nadir_frame(Planet(scene_.planet), scene_.camera, options.wave_anchor)),
-        inputs(frame_inputs(scene_, nadir)),
+        renderer_options(options),
+        reference(options.reference),
         shaders([&] {
           std::vector<std::filesystem::path> roots(options.shader_roots.begin(),
                                                    options.shader_roots.end());
           return roots;
         }()),
-        target(scene_.image.width, scene_.image.height),
         info(query_gl_info()),
-        timer(gl::GpuTimer::source_for_renderer(info.renderer)) {
-    check_drawable(scene);
-    // Creating the provider uploads tables and images: from client memory, tightly packed,
-    // whatever unpack state a host's context has, which is given back after.
-    const gl::StateGuard guard;
-    gl::set_pass_state();
+        timer(gl::GpuTimer::source_for_renderer(info.renderer)),
+        sky_cache(options.sky_cache ? options.sky_cache : make_sky_provider_cache()),
+        target(scene_.image.width, scene_.image.height) {
     if (!info.missing.empty()) {
       std::string missing;
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
       throw gl::GlError("this OpenGL context lacks what thalassa needs: " + missing);
     }
+    if (options.method == ocean::OceanMethod::reference) check_reference_sampling(reference);
+    StagedScene staged = stage(scene_, false);
+    commit(std::move(staged));
+  }
+
+  // The waves' chart for `scene`'s camera (planet/nadir_frame.hpp): the options' anchor where
+  // they give one; else, after the first scene, the last scene's anchor while the camera stays
+  // below kSpaceModeHeight within kWaveAnchorKeepDistance of it (so that the waves do not jump
+  // as the camera moves), and the lattice point nearest the camera otherwise (from space no
+  // wave is resolved, and a new anchor shows nothing).
+  std::optional<Geodetic> wave_anchor(const Scene& next, bool has_scene) const {
+    if (renderer_options.wave_anchor) return renderer_options.wave_anchor;
+    if (!has_scene || next.camera.height >= kSpaceModeHeight) return std::nullopt;
+    const Planet planet(next.planet);
+    const double distance =
+        glm::length(planet.ecef(next.camera.lat, next.camera.lon, 0.0) -
+                    planet.ecef(nadir.wave_anchor.lat, nadir.wave_anchor.lon, 0.0));
+    if (distance <= kWaveAnchorKeepDistance) return nadir.wave_anchor;
+    return std::nullopt;
+  }
+
+  // Makes what `next` needs that the current scene does not hold; changes nothing of the
+  // Renderer's but its caches (the sky cache, the shader library). `has_scene`: false for the
+  // constructor's scene.
+  StagedScene stage(const Scene& next, bool has_scene) {
+    check_drawable(next);
+    const auto& options = renderer_options;
+    StagedScene s;
+    s.scene = next;
+    s.nadir = make_nadir_frame(Planet(next.planet), next.camera, wave_anchor(next, has_scene));
+    s.inputs = frame_inputs(next, s.nadir);
+    // Creating the provider uploads tables and images: from client memory, tightly packed,
+    // whatever unpack state a host's context has, which is given back after.
+    const gl::StateGuard guard;
+    gl::set_pass_state();
+    if (has_scene && (next.image.width != target.width() || next.image.height != target.height())) {
+      s.target.emplace(next.image.width, next.image.height);
+      if (options.method == ocean::OceanMethod::reference)
+        s.accumulator.emplace(next.image.width, next.image.height, shaders);
+    }
     const auto provider_start = std::chrono::steady_clock::now();
-    provider = options.sky_cache
-                   ? options.sky_cache->provider(context, scene, options, {}, provider_kept)
-                   : make_sky_provider(scene, options);
-    sky_map_builds_before = provider->sky_map_builds();
-    sky_map_array_before = provider->sky_map_array_ms() > 0.0;
-    provider_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - provider_start)
-            .count();
+    s.provider = sky_cache->provider(context, next, options, {}, s.provider_kept);
+    s.sky_map_builds_before = s.provider->sky_map_builds();
+    s.sky_map_array_before = s.provider->sky_map_array_ms() > 0.0;
+    s.provider_ms = milliseconds_since(provider_start);
     // A photograph's sun is where the photograph has it.
-    if (const auto sun = provider->sun_direction()) inputs.sun_direction = *sun;
+    if (const auto sun = s.provider->sun_direction()) s.inputs.sun_direction = *sun;
     bool sky_visible = false, sea_visible = false;
-    horizon_visibility(inputs, sky_visible, sea_visible);
+    horizon_visibility(s.inputs, sky_visible, sea_visible);
     // The sun's disc and glint while any of the disc is above the horizon (the provider fades
     // them as it sets).
-    const bool sun_up = inputs.sun_direction.z > -std::sin(provider->sun_angular_radius());
-    if (sky_visible) graph.add(atmosphere::make_sky_node({.sun_disc = sun_up}, provider));
-    const bool space = scene.camera.height >= kSpaceModeHeight;
+    const bool sun_up = s.inputs.sun_direction.z > -std::sin(s.provider->sun_angular_radius());
+    if (sky_visible)
+      s.recipes.push_back({.options = atmosphere::SkyNodeOptions{.sun_disc = sun_up},
+                           .provider = s.provider.get()});
+    const bool space = next.camera.height >= kSpaceModeHeight;
     // Wakes and calm areas in view (issue 9), placed in the nadir frame; none for most scenes.
     std::shared_ptr<const ocean::LocalFeatures> features;
-    if (sea_visible && (!scene.wakes.empty() || !scene.calm_areas.empty())) {
+    if (sea_visible && (!next.wakes.empty() || !next.calm_areas.empty())) {
       const auto start = std::chrono::steady_clock::now();
       features = std::make_shared<const ocean::LocalFeatures>(
-          place_local_features(Planet(scene.planet), scene, nadir));
-      features_ms =
-          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-              .count();
+          place_local_features(Planet(next.planet), next, s.nadir));
+      s.features_ms = milliseconds_since(start);
     }
     if (sea_visible && space)
-      graph.add(make_space_ocean_node({.settings = scene.ocean,
-                                       .sun_glint = sun_up && options.terms.sun,
-                                       .sky = options.terms.sky,
-                                       .sea = options.terms.sea,
-                                       .air = options.terms.air,
-                                       .provider = provider,
-                                       .features = features}));
+      s.recipes.push_back(
+          {.options = SpaceOceanNodeOptions{.settings = next.ocean,
+                                            .sun_glint = sun_up && options.terms.sun,
+                                            .sky = options.terms.sky,
+                                            .sea = options.terms.sea,
+                                            .air = options.terms.air,
+                                            .provider = s.provider,
+                                            .features = features}});
     if (space && options.method != ocean::OceanMethod::full)
       throw SceneError("--method " + std::string(ocean::method_name(options.method)) +
                        ": expected a camera below " + std::to_string(int(kSpaceModeHeight)) +
                        " m (the method draws the projected grid's sea), got camera.height " +
-                       std::to_string(scene.camera.height));
-    if (options.method == ocean::OceanMethod::reference) {
-      const ReferenceSampling& r = options.reference;
-      if (!(r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
-            r.sun_cells >= 1 && r.sun_cells <= ocean::kReferenceMaxSunCells &&
-            r.sun_max_cells >= 1 && r.sun_max_cells <= ocean::kReferenceMaxSunCells &&
-            r.sun_batch_invocations >= 1 &&
-            r.sun_batch_invocations <= ocean::kReferenceMaxSunBatch && r.sun_segment >= 0 &&
-            r.sun_segment <= ocean::kReferenceMaxSunCells && r.sun_block_rows >= 0 &&
-            r.sun_block_rows <= ocean::kReferenceMaxSunBlockRows && r.sun_refined_queue >= -1 &&
-            r.sun_refined_queue <= ocean::kReferenceMaxSunRefinedQueue &&
-            r.grid_cell >= ocean::kReferenceMinGridCell &&
-            r.grid_cell <= ocean::kReferenceGridCell && r.sun_cells_per_wavelength >= 1.0 &&
-            r.sun_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength &&
-            (r.sun_max_cells_per_wavelength == 0.0 ||
-             (r.sun_max_cells_per_wavelength >= r.sun_cells_per_wavelength &&
-              r.sun_max_cells_per_wavelength <= ocean::kReferenceMaxCellsPerWavelength))))
-        throw std::invalid_argument(
-            "ReferenceSampling: expected 1 <= min_samples <= max_samples, row_tolerance > 0, "
-            "sun_cells in [1, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_max_cells in [1, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_cells_per_wavelength in [1, " +
-            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "], sun_max_cells_per_wavelength 0 or in [sun_cells_per_wavelength, " +
-            std::to_string(int(ocean::kReferenceMaxCellsPerWavelength)) +
-            "], grid_cell in [0.125, 1], sun_batch_invocations in [1, 2^31], sun_segment in [0, " +
-            std::to_string(ocean::kReferenceMaxSunCells) + "], sun_block_rows in [0, " +
-            std::to_string(ocean::kReferenceMaxSunBlockRows) + "] and sun_refined_queue in [-1, " +
-            std::to_string(ocean::kReferenceMaxSunRefinedQueue) + "]");
-    }
+                       std::to_string(next.camera.height));
     if (sea_visible && !space)
-      graph.add(ocean::make_ocean_node(
-          {.settings = scene.ocean,
-           .sun_glint = sun_up && options.terms.sun,
-           .sky = options.terms.sky,
-           .sea = options.terms.sea,
-           .air = options.terms.air,
-           .sky_nine_samples = scene.ocean.sky_filter == "nine_samples",
-           .sky_shrm = scene.ocean.sky_filter == "shrm",
-           .provider = provider,
-           .method = options.method,
-           .reference_sun_cells = reference_sun_cells(options.reference),
-           .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
-           .reference_sun_refine = options.reference.sun_refine,
-           .reference_grid_cell = options.reference.grid_cell,
-           .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
-           .reference_measure_lattice = options.reference.measure_lattice,
-           .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
-           .reference_max_sun_cells = options.reference.sun_max_cells,
-           .reference_lattice_tolerance = options.reference.row_tolerance,
-           .reference_float_atomics = options.reference.sun_float_atomics,
-           .reference_sun_segment = options.reference.sun_segment,
-           .reference_sun_block_rows = options.reference.sun_block_rows,
-           .reference_sun_refined_queue = options.reference.sun_refined_queue,
-           .reference_sun_batch = options.reference.sun_batch_invocations,
-           .reference_sun_cache = options.reference.sun_cache,
-           .reference_sun_test_faults = options.reference.sun_test_faults,
-           .features = features}));
+      s.recipes.push_back(
+          {.options = ocean::OceanNodeOptions{
+               .settings = next.ocean,
+               .sun_glint = sun_up && options.terms.sun,
+               .sky = options.terms.sky,
+               .sea = options.terms.sea,
+               .air = options.terms.air,
+               .sky_nine_samples = next.ocean.sky_filter == "nine_samples",
+               .sky_shrm = next.ocean.sky_filter == "shrm",
+               .provider = s.provider,
+               .method = options.method,
+               .reference_sun_cells = reference_sun_cells(options.reference),
+               .reference_cells_per_wavelength = options.reference.sun_cells_per_wavelength,
+               .reference_sun_refine = options.reference.sun_refine,
+               .reference_grid_cell = options.reference.grid_cell,
+               .reference_sun_scatter = options.reference.sun == ReferenceSun::scattered,
+               .reference_measure_lattice = options.reference.measure_lattice,
+               .reference_max_cells_per_wavelength = options.reference.sun_max_cells_per_wavelength,
+               .reference_max_sun_cells = options.reference.sun_max_cells,
+               .reference_lattice_tolerance = options.reference.row_tolerance,
+               .reference_float_atomics = options.reference.sun_float_atomics,
+               .reference_sun_segment = options.reference.sun_segment,
+               .reference_sun_block_rows = options.reference.sun_block_rows,
+               .reference_sun_refined_queue = options.reference.sun_refined_queue,
+               .reference_sun_batch = options.reference.sun_batch_invocations,
+               .reference_sun_cache = options.reference.sun_cache,
+               .reference_sun_test_faults = options.reference.sun_test_faults,
+               .features = features}});
+    // Keep each node of the last scene whose recipe is the new one's: the same wakes and calm
+    // areas in view count as the same (they are placed anew for every scene).
+    for (NodeRecipe& recipe : s.recipes) {
+      int keep = -1;
+      for (std::size_t i = 0; i < recipes.size() && keep < 0; ++i) {
+        if (recipes[i].options.index() != recipe.options.index()) continue;
+        auto* mine = recipe_features(recipe);
+        const auto* theirs = recipe_features(recipes[i]);
+        if (mine && *mine && *theirs && **mine == **theirs) *mine = *theirs;
+        if (recipes[i] == recipe) keep = static_cast<int>(i);
+      }
+      s.kept.push_back(keep);
+      s.made.push_back(keep >= 0 ? std::unique_ptr<gl::Node>() : make_node(recipe, s.provider));
+    }
+    return s;
+  }
+
+  // Forgets the last scene's frames: their times (Renderer::reset_timings) and the reference's
+  // results.
+  void forget_frames();
+
+  // Puts a staged scene in place; nothing here throws but an allocation.
+  void commit(StagedScene s) {
+    scene = std::move(s.scene);
+    nadir = s.nadir;
+    inputs = s.inputs;
+    if (s.target) target = std::move(*s.target);
+    if (s.accumulator) accumulator = std::move(s.accumulator);
+    std::vector<std::unique_ptr<gl::Node>> old = graph.set_nodes({});
+    std::vector<std::unique_ptr<gl::Node>> nodes;
+    kept_nodes.clear();
+    for (std::size_t i = 0; i < s.recipes.size(); ++i) {
+      if (s.kept[i] >= 0) {
+        nodes.push_back(std::move(old[std::size_t(s.kept[i])]));
+        kept_nodes.push_back(nodes.back()->name());
+      } else {
+        nodes.push_back(std::move(s.made[i]));
+      }
+    }
+    graph.set_nodes(std::move(nodes));
+    recipes = std::move(s.recipes);
+    provider = std::move(s.provider);
+    provider_kept = s.provider_kept;
+    provider_ms = s.provider_ms;
+    sky_map_builds_before = s.sky_map_builds_before;
+    sky_map_array_before = s.sky_map_array_before;
+    features_ms = s.features_ms;
+    shaders.start_use_record();
+    compile_ms_before = shaders.compile_ms();
   }
 
   // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
@@ -474,8 +621,6 @@ struct Renderer::Impl {
     return inverse;
   }
 
-  RendererOptions renderer_options;
-  ReferenceSampling reference;
   int samples = 1;
   double sample_row_change = 0.0;
   std::vector<double> sample_row_changes;  // RenderStats::sample_row_changes
@@ -490,8 +635,6 @@ struct Renderer::Impl {
 
 Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions options)
     : impl_(std::make_unique<Impl>(context, scene, options)) {
-  impl_->renderer_options = options;
-  impl_->reference = options.reference;
   // A first frame compiles every shader, so that no timed frame includes compilation (one sample
   // of the reference is enough for that).
   impl_->context.make_current();
@@ -501,10 +644,41 @@ Renderer::Renderer(GlContext& context, const Scene& scene, RendererOptions optio
   reset_timings();
 }
 
+void Renderer::set_scene(const Scene& scene) {
+  Impl& m = *impl_;
+  m.context.make_current();
+  const auto start = std::chrono::steady_clock::now();
+  m.commit(m.stage(scene, true));
+  m.set_scene_ms = milliseconds_since(start);
+  m.forget_frames();
+  // The reference compiles before its samples are timed, as in the constructor; the other
+  // methods draw a frame that compiled anything again (render()).
+  if (m.renderer_options.method == ocean::OceanMethod::reference) {
+    m.draw_frame();
+    m.forget_frames();
+  }
+}
+
 void Renderer::reset_timings() {
   impl_->frame_ms.clear();
   impl_->pass_ms.clear();
   impl_->timer_fallbacks_before = impl_->timer.fallback_frames();
+}
+
+void Renderer::Impl::forget_frames() {
+  frame_ms.clear();
+  pass_ms.clear();
+  pass_order.clear();
+  timer_fallbacks_before = timer.fallback_frames();
+  samples = 1;
+  sample_row_change = 0.0;
+  sample_row_changes.clear();
+  resolved_rows.clear();
+  nonfinite_samples = 0;
+  nonfinite_pixels = 0;
+  first_nonfinite_x = first_nonfinite_y = -1;
+  first_nonfinite_samples = 0;
+  sea_rgba.clear();
 }
 
 // GL objects are deleted in the renderer's own context (a no-op for a host's context, which
@@ -521,9 +695,26 @@ void Renderer::render() {
   Impl& m = *impl_;
   m.context.make_current();
   // The reference's frame is all its samples (its passes' times stay per sample).
-  m.frame_ms.push_back(m.renderer_options.method == ocean::OceanMethod::reference
-                           ? m.draw_reference(m.renderer_options.reference.max_samples)
-                           : m.draw_frame());
+  if (m.renderer_options.method == ocean::OceanMethod::reference) {
+    m.frame_ms.push_back(m.draw_reference(m.renderer_options.reference.max_samples));
+    return;
+  }
+  const std::size_t programs = m.shaders.program_count();
+  const int fallbacks = m.timer.fallback_frames();
+  double ms = m.draw_frame();
+  // A frame that compiled programs (the first after a set_scene that needs new ones) is not
+  // timed: its passes' times are taken back and the frame is drawn again.
+  if (m.shaders.program_count() != programs) {
+    for (const std::string& name : m.pass_order) {
+      auto it = m.pass_ms.find(name);
+      if (it == m.pass_ms.end() || it->second.empty()) continue;
+      it->second.pop_back();
+      if (it->second.empty()) m.pass_ms.erase(it);
+    }
+    m.timer_fallbacks_before += m.timer.fallback_frames() - fallbacks;
+    ms = m.draw_frame();
+  }
+  m.frame_ms.push_back(ms);
 }
 
 Image Renderer::image() const {
@@ -646,6 +837,11 @@ RenderStats Renderer::stats() const {
   for (const auto& node : m.graph.nodes())
     for (std::string& warning : node->warnings()) stats.warnings.push_back(std::move(warning));
   stats.sky_provider_kept = m.provider_kept;
+  stats.kept_nodes = m.kept_nodes;
+  stats.wave_anchor = m.nadir.wave_anchor;
+  if (m.set_scene_ms >= 0.0) stats.setup_ms.emplace_back("renderer.set_scene", m.set_scene_ms);
+  if (const double compile = m.shaders.compile_ms() - m.compile_ms_before; compile > 0.0)
+    stats.setup_ms.emplace_back("shaders.compile", compile);
   if (!m.provider_kept) stats.setup_ms.emplace_back("sky.provider", m.provider_ms);
   if (m.features_ms >= 0.0) stats.setup_ms.emplace_back("features.place", m.features_ms);
   if (!m.provider_kept)
@@ -656,7 +852,7 @@ RenderStats Renderer::stats() const {
     stats.setup_ms.emplace_back("sky.map", m.provider->sky_map_ms());
   if (m.provider->sky_map_array_ms() > 0.0 && !m.sky_map_array_before)
     stats.setup_ms.emplace_back("sky.map_array", m.provider->sky_map_array_ms());
-  for (const auto& program : m.shaders.built_programs()) stats.built.push_back("shader:" + program);
+  for (const auto& program : m.shaders.used_programs()) stats.built.push_back("shader:" + program);
   return stats;
 }
 

@@ -20,6 +20,7 @@ struct SpaceOceanNodeOptions {
   std::shared_ptr<atmosphere::SkyProvider> provider;
   // The wakes and calm areas in view (issue 9): they change the slope variance only.
   std::shared_ptr<const ocean::LocalFeatures> features;
+  bool operator==(const SpaceOceanNodeOptions&) const = default;
 };
 
 std::unique_ptr<gl::Node> make_space_ocean_node(const SpaceOceanNodeOptions& options);

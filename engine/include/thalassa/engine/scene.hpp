@@ -90,6 +90,7 @@ struct OceanSettings {
   // normal) or "fresnel_weighted" (the visible facets' Fresnel-weighted mean slope;
   // ocean_fresnel.md).
   std::string sky_lobe_centre = "mirror";
+  bool operator==(const OceanSettings&) const = default;
 };
 
 struct SkySettings {

@@ -70,6 +70,7 @@ struct KelvinWakeParams {
   double amplitude = 0.3;  // a_ref, m: transverse wave amplitude on the track lambda0 astern
   double draft = 3.0;      // d, m (> 0): depth of the equivalent source; damps short waves
   double length = 3000.0;  // m: how far astern the wake reaches (its end fades out)
+  bool operator==(const KelvinWakeParams&) const = default;
 };
 
 // One branch of the pattern at a point: locally a trochoid (paper eq. 2) with these values.

@@ -29,6 +29,7 @@ struct CalmScaleChart {
   int height = 0;            // samples along y
   std::vector<float> scale;  // s, dimensionless in [0, 1]; row y = j at scale[j * width + i]
   int areas = 0;             // calm areas sampled (after culling)
+  bool operator==(const CalmScaleChart&) const = default;
 };
 
 // A wake in the frame: its past track (ShipWake::past_track: the ship, then the track's points
@@ -41,6 +42,7 @@ struct WakeInFrame {
   std::string name;
   std::vector<glm::dvec2> track;  // m, nadir frame; track[0] is the ship; >= 2 points
   KelvinWakeParams params;        // the speed is the ship's current one
+  bool operator==(const WakeInFrame&) const = default;
 };
 
 // The wake's ship-frame coordinates at the frame point p (m), as the shaders compute them
@@ -59,6 +61,7 @@ struct LocalFeatures {
   std::optional<CalmScaleChart> calm;  // none when no calm area is in view
   std::vector<WakeInFrame> wakes;      // the wakes in view
   bool empty() const { return !calm && wakes.empty(); }
+  bool operator==(const LocalFeatures&) const = default;
 };
 
 // The GPU's form of a wake's parameters (shaders/ocean/kelvin_wake.glsl, KelvinWake): k0

@@ -38,6 +38,13 @@ namespace thalassa {
 // that no frame crosses from one lattice cell's waves to the next.
 inline constexpr double kWaveAnchorSpacingDeg = 0.25;
 
+// How far from its waves' anchor a Renderer's camera may move and keep it (Renderer::set_scene),
+// m of chord: 100 km, where the chart's tangent plane is the surface to (d / R)^2 = 2.5e-4 in
+// length and its axes turn from the local east and north by the meridians' convergence, about
+// d tan(lat) / R: 0.9 degree at 45 degrees of latitude (the wind's direction off by as much).
+// Farther, the camera takes the lattice point nearest it, and the waves under it change once.
+inline constexpr double kWaveAnchorKeepDistance = 100e3;
+
 // The lattice point nearest (lat, lon) (degrees; height 0), longitude in (-180, 180].
 Geodetic nearest_wave_anchor(double lat_deg, double lon_deg);
 

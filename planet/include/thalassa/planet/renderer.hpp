@@ -49,7 +49,9 @@ struct RenderStats {
   int timing_fallback_frames = 0;
   std::vector<std::pair<std::string, double>> passes;  // pass -> GPU ms, median over frames
   int resolved_waves = 0;          // waves summed as geometry or normals (surface mode)
-  std::vector<std::string> built;  // modules and shader features this scene caused to exist
+  // Modules and shader features this scene caused to exist, and "shader:" the programs its
+  // frames drew with.
+  std::vector<std::string> built;
   std::string sky_provider;        // "atmosphere" or "environment_map"
   std::string method = "full";     // the ocean's shading method (ocean/method.hpp)
   // The reference method: samples averaged per pixel, and the largest relative change of an
@@ -128,15 +130,28 @@ struct RenderStats {
   int reference_first_nonfinite_x = -1;
   int reference_first_nonfinite_y = -1;
   int reference_first_nonfinite_samples = 0;
-  // One-off costs this Renderer paid, wall-clock ms: "sky.provider" (creating it, the
-  // atmosphere's tables computed or loaded from the cache included), "atmosphere.precompute" /
+  // One-off costs this scene paid, wall-clock ms: "sky.provider" (creating it, the atmosphere's
+  // tables computed or loaded from the cache included), "atmosphere.precompute" /
   // "atmosphere.load", "sky.map", "sky.map_array", "features.place" (culling and placing the
   // scene's wakes and calm areas, their chart sampled on the CPU: planet/local_features.hpp;
-  // only with some). A provider kept from an earlier Renderer (sky_provider_kept) adds none of
-  // its own, and its maps only where this Renderer built them again.
+  // only with some), "shaders.compile" (the programs its frames compiled, the constructor's
+  // first frame included; none where every program was compiled for an earlier scene) and
+  // "renderer.set_scene" (Renderer::set_scene's own time, of which the others but the shaders'
+  // are parts; only after set_scene). A provider kept from an earlier Renderer or scene
+  // (sky_provider_kept) adds none of its own, and its maps only where this scene built them
+  // again.
   std::vector<std::pair<std::string, double>> setup_ms;
-  // The sky provider came from RendererOptions::sky_cache, made by an earlier Renderer.
+  // The sky provider came from RendererOptions::sky_cache, or from the Renderer's own cache,
+  // made for an earlier Renderer or scene.
   bool sky_provider_kept = false;
+  // The scene graph's nodes ("sky", "ocean") that Renderer::set_scene kept from the last scene,
+  // their GPU objects and tables with them, rather than make them again; empty after the
+  // constructor.
+  std::vector<std::string> kept_nodes;
+  // The waves' chart's origin (degrees, height 0; planet/nadir_frame.hpp): the lattice point
+  // nearest the camera, RendererOptions::wave_anchor, or the one an earlier scene kept
+  // (Renderer::set_scene).
+  Geodetic wave_anchor;
   // The reference: its grid's cell, pixels (ReferenceSampling::grid_cell); 0 for the others.
   double reference_grid_cell = 0.0;
 };
@@ -337,6 +352,27 @@ class Renderer {
   // framebuffer bindings, viewport, program, vertex array, depth state, clip control, uniform
   // buffer binding 0, texture unit 0), so a host's context is left as it was.
   void render();
+  // Makes `scene` the one render() draws: the camera, the sun and the clock of a host's or a
+  // flight's next frame, or any other key. What it shares with the last scene is kept rather
+  // than made again:
+  // - the compiled shader programs (a frame that compiles new ones, after a switch between
+  //   `surface` and `space` mode say, is drawn twice by render(), so that no time includes
+  //   compiling);
+  // - the HDR target, its texture and framebuffer names with it, while the image's size stays;
+  // - the sky provider while the sky does (sky.exr, the planet's radius; its sea's sky map is
+  //   drawn again only when the sun moves at the camera's nadir);
+  // - each node of the scene graph (the sky, the sea from space, the sea's projected grid) whose
+  //   options are the same: the ocean's waves, settings and light terms, and the wakes and calm
+  //   areas in view; a scene with ships under way places them anew each time and makes its sea
+  //   again (RenderStats::kept_nodes).
+  // The waves keep their chart (planet/nadir_frame.hpp) while the camera stays below
+  // kSpaceModeHeight within kWaveAnchorKeepDistance of its anchor, so that they stay where they
+  // are on the planet as the camera moves; RendererOptions::wave_anchor fixes it for good. The
+  // image is then the one a new Renderer with that anchor draws (tests/gpu/set_scene_test.cpp).
+  // The statistics start again: stats() describes this scene's frames. Throws like the
+  // constructor (SceneError for a scene that cannot be drawn); the Renderer then keeps the
+  // last scene, and draws it as before. The context must be current.
+  void set_scene(const Scene& scene);
   // Forgets the frames' times measured so far (RenderStats::frames, frame_ms, passes,
   // timing_fallback_frames), so that the next ones are timed alone: after warm-up frames, while
   // a GPU's clocks rise from idle (validate's timing of the methods).

@@ -11,6 +11,7 @@ namespace thalassa::atmosphere {
 
 struct SkyNodeOptions {
   bool sun_disc = true;  // draw the sun's disc
+  bool operator==(const SkyNodeOptions&) const = default;
 };
 
 std::unique_ptr<gl::Node> make_sky_node(const SkyNodeOptions& options,

@@ -108,6 +108,8 @@ class SceneGraph {
  public:
   SceneGraph();
   void add(std::unique_ptr<Node> node);
+  // Replaces every node with `nodes` (drawn in that order) and hands back the ones it held.
+  std::vector<std::unique_ptr<Node>> set_nodes(std::vector<std::unique_ptr<Node>> nodes);
   const std::vector<std::unique_ptr<Node>>& nodes() const { return nodes_; }
 
   // Draws every node in order into `target`, timing each as a pass of `timer`.

@@ -63,6 +63,15 @@ class ShaderLibrary {
   GLuint program(const ProgramDesc& desc);
   // Every program built so far, as "vertex+fragment[DEFINE=V,...]", for statistics.
   std::vector<std::string> built_programs() const;
+  // The programs built so far, and the wall-clock ms spent compiling and linking them (the
+  // driver's work included: the link status waits for it).
+  std::size_t program_count() const { return programs_.size(); }
+  double compile_ms() const { return compile_ms_; }
+  // The programs asked for (built, or found built) since the last start_use_record(), or since
+  // the library was made, in the form of built_programs(): what a renderer's current scene uses
+  // of a library that its earlier scenes filled (planet/renderer.hpp, Renderer::set_scene).
+  void start_use_record() { ++use_record_; }
+  std::vector<std::string> used_programs() const;
 
   // Maps a driver info log (Mesa "0:12(5): error: ..." or NVIDIA "0(12) : error C0000: ...")
   // to "file:line: ..." lines using the source-string table.
@@ -71,7 +80,13 @@ class ShaderLibrary {
  private:
   GLuint compile(GLenum stage, const std::string& path, const Defines& defines) const;
   std::vector<std::filesystem::path> roots_;
-  std::map<std::string, ProgramName> programs_;
+  struct Program {
+    ProgramName name;
+    unsigned long long last_use = 0;  // the use record it was last asked for in
+  };
+  std::map<std::string, Program> programs_;
+  unsigned long long use_record_ = 0;
+  double compile_ms_ = 0.0;
 };
 
 }  // namespace thalassa::gl

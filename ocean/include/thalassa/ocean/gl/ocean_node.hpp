@@ -109,6 +109,9 @@ struct OceanNodeOptions {
   // The wakes and calm areas in view (issue 9), placed in the frame by the planet module; null
   // or empty: none, and none of their shader code is compiled.
   std::shared_ptr<const LocalFeatures> features;
+  // Every option the same (the pointers: the same objects); Renderer::set_scene keeps a node made
+  // with the same options.
+  bool operator==(const OceanNodeOptions&) const = default;
 };
 
 std::unique_ptr<gl::Node> make_ocean_node(const OceanNodeOptions& options);
