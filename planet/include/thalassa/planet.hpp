@@ -3,6 +3,7 @@
 #pragma once
 
 #include "thalassa/planet/calm_area.hpp"
+#include "thalassa/planet/camera_controls.hpp"
 #include "thalassa/planet/camera_frame.hpp"
 #include "thalassa/planet/flight.hpp"
 #include "thalassa/planet/geo_bounds.hpp"
