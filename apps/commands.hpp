@@ -96,6 +96,15 @@ struct ValidateArgs {
   double time_limit = 0.0;
 };
 
+struct ViewArgs {
+  std::string scene;  // empty: the embedded default scene
+  std::vector<std::string> sets;
+  int frames = 0;          // close after this many frames; 0: when the window is closed
+  bool paused = false;     // the scene's clock stopped at the start
+  bool no_panel = false;   // the panel hidden at the start
+  std::string screenshot;  // the last frame's EXR (PNG and scene JSON beside it); empty: none
+};
+
 struct InfoArgs {
   std::string backend;
 };
@@ -110,6 +119,10 @@ int run_sky(const SkyArgs& args);
 int run_fly(const FlyArgs& args);
 int run_info(const InfoArgs& args);
 int run_validate(const ValidateArgs& args);
+// The interactive viewer (apps/view_command.cpp): built with GLFW and Dear ImGui only
+// (THALASSA_HAVE_VIEW).
+void add_view_command(CLI::App& app, ViewArgs& args);
+int run_view(const ViewArgs& args);
 
 // Prints "thalassa: <message>" on stderr.
 void print_error(const std::string& message);

@@ -16,11 +16,17 @@ int main(int argc, char** argv) {
   FlyArgs fly_args;
   ValidateArgs validate_args;
   InfoArgs info_args;
+#ifdef THALASSA_HAVE_VIEW
+  ViewArgs view_args;
+#endif
   add_render_command(app, render_args);
   add_sky_command(app, sky_args);
   add_fly_command(app, fly_args);
   add_validate_command(app, validate_args);
   add_info_command(app, info_args);
+#ifdef THALASSA_HAVE_VIEW
+  add_view_command(app, view_args);
+#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& success) {
@@ -35,6 +41,9 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("fly")) return run_fly(fly_args);
     if (app.got_subcommand("validate")) return run_validate(validate_args);
     if (app.got_subcommand("info")) return run_info(info_args);
+#ifdef THALASSA_HAVE_VIEW
+    if (app.got_subcommand("view")) return run_view(view_args);
+#endif
   } catch (const std::exception& error) {
     print_error(error.what());
     return kExitRuntimeFailure;

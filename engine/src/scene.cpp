@@ -695,6 +695,17 @@ SceneBuilder::SceneBuilder() : impl_(new Impl) {
 
 SceneBuilder::~SceneBuilder() { delete impl_; }
 
+SceneBuilder::SceneBuilder(const SceneBuilder& other) : impl_(new Impl(*other.impl_)) {}
+
+SceneBuilder& SceneBuilder::operator=(const SceneBuilder& other) {
+  if (this != &other) {
+    Impl* copy = new Impl(*other.impl_);
+    delete impl_;
+    impl_ = copy;
+  }
+  return *this;
+}
+
 SceneBuilder::SceneBuilder(SceneBuilder&& other) noexcept : impl_(other.impl_) {
   other.impl_ = nullptr;
 }

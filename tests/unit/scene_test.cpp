@@ -156,6 +156,25 @@ TEST(SceneDefaults, DataFilesMatch) {
 
 // --- files and overrides ---------------------------------------------------------------------
 
+// A copy is a trial: what it is given leaves the original as it was (thalassa view tries a
+// frame's changes on one, so that they take together or not at all).
+TEST(SceneFile, CopyTakesChangesAlone) {
+  SceneBuilder original;
+  original.set("camera.height=100");
+  SceneBuilder trial = original;
+  trial.set("camera.height=2000");
+  trial.set("sun.zenith=30");
+  EXPECT_THROW(trial.set("camera.lat=95"), SceneError);
+  EXPECT_EQ(trial.build().camera.height, 2000.0);
+  EXPECT_EQ(trial.build().sun.zenith, 30.0);
+  EXPECT_EQ(original.build().camera.height, 100.0);
+  EXPECT_EQ(original.build().sun.zenith, Scene{}.sun.zenith);
+  EXPECT_EQ(original.source_of("sun.zenith"), "defaults");
+  original = trial;
+  EXPECT_EQ(original.build().camera.height, 2000.0);
+  EXPECT_EQ(original.merged_json(), trial.merged_json());
+}
+
 TEST(SceneFile, OverridesSomeKeys) {
   SceneBuilder b;
   b.load_text(R"({"camera": {"height": 20000, "pitch": -90},

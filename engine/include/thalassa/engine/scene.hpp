@@ -160,6 +160,9 @@ class SceneBuilder {
   ~SceneBuilder();
   SceneBuilder(SceneBuilder&&) noexcept;
   SceneBuilder& operator=(SceneBuilder&&) noexcept;
+  // A copy to try changes on: several sets that must take together or not at all.
+  SceneBuilder(const SceneBuilder&);
+  SceneBuilder& operator=(const SceneBuilder&);
 
   // Lays a JSON document over the current values. `source` names it in messages (a path).
   void load_text(std::string_view json_text, std::string_view source);

@@ -1,0 +1,410 @@
+// `thalassa view`: the interactive viewer. A GLFW window whose OpenGL context thalassa draws
+// into as a host application's (attach_host_context), one Renderer given each frame's scene
+// (Renderer::set_scene), the camera flown with the keys and the mouse (planet/camera_controls.hpp)
+// and the scene's main keys on a Dear ImGui panel. Every change goes through a SceneBuilder, so
+// that it gets the scene file's checks (and a sun given by sun.utc follows the camera), and a
+// screenshot writes, beside its EXR and PNG, the scene as a file that `thalassa render` draws
+// again at any size. docs/viewer.md.
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+
+namespace thalassa::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The sun's keys turn it by these rates, degrees per second (a boost multiplies them).
+constexpr double kSunZenithRate = 10.0;
+constexpr double kSunAzimuthRate = 30.0;
+// A mouse drag turns the view by the pixel's angle times this: 1 keeps the point under the
+// cursor under it, as dragging a photograph would.
+constexpr double kDragGain = 1.0;
+// The wheel scales the field of view by exp(-kZoomStep) a notch.
+constexpr double kZoomStep = 0.1;
+// The longest step a frame may take, s: a stall (a window dragged, a scene remade) does not
+// throw the camera across the planet.
+constexpr double kLongestStep = 0.25;
+constexpr double kBoost = 5.0;  // a held Shift
+
+// "%.17g": a double written so that it reads back the same.
+std::string exact(double value) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+// The viewer's scene: a SceneBuilder holding the loaded scene and every change since.
+class ViewedScene {
+ public:
+  explicit ViewedScene(SceneBuilder builder) : builder_(std::move(builder)) {
+    scene_ = builder_.build();
+  }
+  const Scene& scene() const { return scene_; }
+  std::string merged_json() const { return builder_.merged_json(); }
+  bool sun_from_utc() const { return scene_.sun.utc.has_value(); }
+
+  // Sets the keys that differ from the scene's: throws SceneError, the scene unchanged, for a
+  // value the scene file would refuse.
+  void update(const Scene& next) {
+    SceneBuilder trial = builder_;
+    std::vector<std::string> sets;
+    auto set = [&](const char* key, double now, double then) {
+      if (now != then) sets.push_back(std::string(key) + "=" + exact(now));
+    };
+    const CameraSettings &c = next.camera, &o = scene_.camera;
+    set("camera.lat", c.lat, o.lat);
+    set("camera.lon", c.lon, o.lon);
+    set("camera.height", c.height, o.height);
+    set("camera.heading", c.heading, o.heading);
+    set("camera.pitch", c.pitch, o.pitch);
+    set("camera.roll", c.roll, o.roll);
+    set("camera.fov_y", c.fov_y, o.fov_y);
+    if (!sun_from_utc()) {
+      set("sun.zenith", next.sun.zenith, scene_.sun.zenith);
+      set("sun.azimuth", next.sun.azimuth, scene_.sun.azimuth);
+    }
+    set("time", next.time, scene_.time);
+    set("image.width", next.image.width, scene_.image.width);
+    set("image.height", next.image.height, scene_.image.height);
+    set("image.exposure", next.image.exposure, scene_.image.exposure);
+    set("ocean.wind_speed", next.ocean.wind_speed, scene_.ocean.wind_speed);
+    set("ocean.wind_direction", next.ocean.wind_direction, scene_.ocean.wind_direction);
+    if (sets.empty()) return;
+    for (const std::string& assignment : sets) trial.set(assignment);
+    Scene built = trial.build();
+    builder_ = std::move(trial);
+    scene_ = std::move(built);
+  }
+
+ private:
+  SceneBuilder builder_;
+  Scene scene_;
+};
+
+// What the keys held this frame ask of the camera (planet/camera_controls.hpp) and the sun.
+struct HeldKeys {
+  CameraMotion motion;
+  double sun_zenith = 0.0;   // -1, 0 or 1 (1: lower, toward the horizon)
+  double sun_azimuth = 0.0;  // -1, 0 or 1 (1: clockwise)
+};
+
+HeldKeys held_keys(GLFWwindow* window) {
+  auto down = [&](int key) { return glfwGetKey(window, key) == GLFW_PRESS ? 1.0 : 0.0; };
+  auto either = [&](int a, int b) { return std::max(down(a), down(b)); };
+  HeldKeys keys;
+  keys.motion.forward = either(GLFW_KEY_W, GLFW_KEY_UP) - either(GLFW_KEY_S, GLFW_KEY_DOWN);
+  keys.motion.right = either(GLFW_KEY_D, GLFW_KEY_RIGHT) - either(GLFW_KEY_A, GLFW_KEY_LEFT);
+  keys.motion.climb = either(GLFW_KEY_R, GLFW_KEY_PAGE_UP) - either(GLFW_KEY_F, GLFW_KEY_PAGE_DOWN);
+  keys.motion.boost = either(GLFW_KEY_LEFT_SHIFT, GLFW_KEY_RIGHT_SHIFT) > 0.0 ? kBoost : 1.0;
+  keys.sun_zenith = down(GLFW_KEY_K) - down(GLFW_KEY_I);
+  keys.sun_azimuth = down(GLFW_KEY_L) - down(GLFW_KEY_J);
+  return keys;
+}
+
+// A key pressed since the last frame (edges, not levels), from GLFW's key callback.
+struct KeyPresses {
+  bool screenshot = false;
+  bool toggle_panel = false;
+  bool toggle_time = false;
+  bool quit = false;
+};
+KeyPresses g_presses;
+GLFWkeyfun g_imgui_key_callback = nullptr;
+
+void key_callback(GLFWwindow* window, int key, int scancode, int action, int mods) {
+  if (g_imgui_key_callback) g_imgui_key_callback(window, key, scancode, action, mods);
+  if (action != GLFW_PRESS || ImGui::GetIO().WantCaptureKeyboard) return;
+  if (key == GLFW_KEY_P || key == GLFW_KEY_F12) g_presses.screenshot = true;
+  if (key == GLFW_KEY_H) g_presses.toggle_panel = true;
+  if (key == GLFW_KEY_SPACE) g_presses.toggle_time = true;
+  if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) g_presses.quit = true;
+}
+
+// Writes the frame as EXR, PNG and the scene file that draws it again (`thalassa render
+// NAME.json`); the messages go to stderr and the panel.
+std::string write_screenshot(const std::string& exr, const Renderer& renderer,
+                             const ViewedScene& viewed) {
+  const Image image = renderer.image();
+  const std::string png = exr.substr(0, exr.size() - 4) + ".png";
+  const std::string json = exr.substr(0, exr.size() - 4) + ".json";
+  if (const std::string problem = nonfinite_pixels(image); !problem.empty())
+    return "screenshot not written: " + problem;
+  PendingOutputs outputs;
+  const Scene& scene = viewed.scene();
+  write_exr(outputs.add(exr), image, scene.image.exr_type,
+            render_metadata(scene, viewed.merged_json(), renderer.stats(),
+                            {{"thalassa:command", "view"}}));
+  write_png(outputs.add(png), image, scene.image.exposure, {{"Software", "thalassa"}});
+  write_text_atomically(outputs.add(json), viewed.merged_json() + "\n");
+  outputs.commit();
+  return "wrote " + exr + ", " + png + " and " + json;
+}
+
+std::string timestamped_name() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[64];
+  std::strftime(text, sizeof text, "thalassa_view_%Y%m%d_%H%M%S.exr", &utc);
+  return text;
+}
+
+// The panel: what is drawn and how fast, and the scene's main keys, edited into `next`.
+void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& viewed, Scene& next,
+                bool& time_running, double& time_rate, bool& screenshot,
+                const std::string& message) {
+  ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  ImGui::Begin("thalassa", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::Text("%s, %s mode, %dx%d", stats.renderer.c_str(), stats.mode.c_str(), stats.width,
+              stats.height);
+  ImGui::Text("frame %.2f ms (%s), %.1f frames/s, %d waves resolved", stats.frame_ms,
+              stats.timing == "finish_wall_clock" ? "wall clock" : "GPU",
+              wall_ms > 0.0 ? 1e3 / wall_ms : 0.0, stats.resolved_waves);
+  if (ImGui::CollapsingHeader("passes")) {
+    for (const auto& [name, ms] : stats.passes) ImGui::Text("%-28s %8.3f ms", name.c_str(), ms);
+  }
+  const ImGuiSliderFlags clamp = ImGuiSliderFlags_AlwaysClamp;
+  auto drag = [&](const char* label, double& value, double speed, double lo, double hi,
+                  const char* format, ImGuiSliderFlags flags = 0) {
+    ImGui::DragScalar(label, ImGuiDataType_Double, &value, float(speed), &lo, &hi, format,
+                      flags | clamp);
+  };
+  if (ImGui::CollapsingHeader("camera", ImGuiTreeNodeFlags_DefaultOpen)) {
+    CameraSettings& c = next.camera;
+    drag("latitude", c.lat, 0.001, -90.0, 90.0, "%.6f deg");
+    drag("longitude", c.lon, 0.001, -180.0, 180.0, "%.6f deg");
+    drag("height", c.height, 0.01, 0.01, 1e9, "%.2f m", ImGuiSliderFlags_Logarithmic);
+    drag("heading", c.heading, 0.5, -360.0, 360.0, "%.1f deg");
+    drag("pitch", c.pitch, 0.25, -90.0, 90.0, "%.2f deg");
+    drag("field of view", c.fov_y, 0.25, 0.01, 179.0, "%.2f deg", ImGuiSliderFlags_Logarithmic);
+  }
+  if (ImGui::CollapsingHeader("sun and time")) {
+    if (viewed.sun_from_utc()) {
+      ImGui::Text("sun from sun.utc %s: zenith %.2f, azimuth %.2f deg",
+                  viewed.scene().sun.utc->c_str(), next.sun.zenith, next.sun.azimuth);
+    } else {
+      drag("sun zenith", next.sun.zenith, 0.25, 0.0, 180.0, "%.2f deg");
+      drag("sun azimuth", next.sun.azimuth, 0.5, -360.0, 360.0, "%.1f deg");
+    }
+    ImGui::Checkbox("time runs", &time_running);
+    ImGui::SameLine();
+    drag("rate", time_rate, 0.05, 0.0, 100.0, "x%.2f");
+    drag("time", next.time, 0.1, 0.0, 1e12, "%.2f s");
+  }
+  if (ImGui::CollapsingHeader("sea and image")) {
+    drag("wind speed", next.ocean.wind_speed, 0.1, 0.0, 60.0, "%.1f m/s");
+    drag("wind from", next.ocean.wind_direction, 0.5, -360.0, 360.0, "%.1f deg");
+    drag("exposure", next.image.exposure, 0.05, 1e-3, 1e6, "%.3f", ImGuiSliderFlags_Logarithmic);
+  }
+  if (ImGui::Button("screenshot (P)")) screenshot = true;
+  ImGui::TextWrapped(
+      "W/S A/D or arrows: fly, R/F or PgUp/PgDn: climb, Shift: x%g, drag: look, wheel: zoom, "
+      "I/K J/L: sun, Space: time, H: panel, Esc: quit",
+      kBoost);
+  if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
+  ImGui::End();
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app, ViewArgs& args) {
+  CLI::App* view = app.add_subcommand(
+      "view",
+      "Open a window on a scene and fly through it (keys, mouse, a panel of the scene's keys); "
+      "needs a display");
+  view->add_option("scene", args.scene, "Scene file (JSON); default: the embedded scene");
+  view->add_option("--set", args.sets, "Override a scene key: --set camera.height=100")
+      ->allow_extra_args(false);
+  view->add_option("--frames", args.frames, "Close after this many frames (0: when closed)")
+      ->check(CLI::NonNegativeNumber);
+  view->add_flag("--paused", args.paused, "Start with the clock stopped");
+  view->add_flag("--no-panel", args.no_panel, "Start with the panel hidden (H shows it)");
+  view->add_option("--screenshot", args.screenshot,
+                   "Write the last frame to this EXR (with its PNG and scene JSON) on closing");
+}
+
+int run_view(const ViewArgs& args) {
+  // 1. Everything the user typed is checked before a window opens.
+  std::optional<ViewedScene> loaded;
+  try {
+    SceneBuilder builder;
+    if (!args.scene.empty()) builder.load_file(args.scene);
+    for (const auto& assignment : args.sets) builder.set(assignment);
+    loaded.emplace(builder);
+    check_drawable(loaded->scene(), builder.source_of("sky.exr"));
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+  ViewedScene& viewed = *loaded;
+  if (!args.screenshot.empty()) {
+    if (const std::string problem = check_output("--screenshot", args.screenshot, ".exr");
+        !problem.empty()) {
+      print_error(problem);
+      return kExitInvalidInput;
+    }
+  }
+  const char* display = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  if ((!display || !*display) && (!wayland || !*wayland)) {
+    print_error("view: no display (DISPLAY is not set); `thalassa render` draws without one");
+    return kExitRuntimeFailure;
+  }
+
+  // 2. The window and its context, which thalassa draws into as a host's.
+  glfwSetErrorCallback([](int code, const char* text) {
+    std::fprintf(stderr, "thalassa: view: GLFW error %d: %s\n", code, text);
+  });
+  if (!glfwInit()) {
+    print_error("view: glfwInit failed");
+    return kExitRuntimeFailure;
+  }
+  struct Terminate {
+    ~Terminate() { glfwTerminate(); }
+  } terminate;
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(viewed.scene().image.width, viewed.scene().image.height,
+                                        "thalassa", nullptr, nullptr);
+  if (!window) {
+    print_error("view: no OpenGL 4.5 core window");
+    return kExitRuntimeFailure;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(args.frames > 0 ? 0 : 1);  // a counted run (tests) does not wait for vsync
+  std::unique_ptr<GlContext> context = attach_host_context(
+      reinterpret_cast<GlProcAddressFn>(&glfwGetProcAddress), "GLFW window (thalassa view)");
+
+  // The image is the window's framebuffer (pixels, which HiDPI screens make more than the
+  // window's size).
+  auto framebuffer_scene = [&](Scene scene) {
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window, &width, &height);
+    if (width > 0 && height > 0) {
+      scene.image.width = std::min(width, 8192);
+      scene.image.height = std::min(height, 8192);
+    }
+    return scene;
+  };
+  std::unique_ptr<Renderer> renderer;
+  try {
+    viewed.update(framebuffer_scene(viewed.scene()));
+    renderer = std::make_unique<Renderer>(*context, viewed.scene());
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working folder
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 450");
+  g_imgui_key_callback = glfwSetKeyCallback(window, key_callback);
+  struct ShutDown {
+    ~ShutDown() {
+      ImGui_ImplOpenGL3_Shutdown();
+      ImGui_ImplGlfw_Shutdown();
+      ImGui::DestroyContext();
+    }
+  } shut_down;
+
+  // 3. The frames.
+  const Planet planet(viewed.scene().planet);
+  bool panel = !args.no_panel;
+  bool time_running = !args.paused;
+  double time_rate = 1.0;
+  std::string message;
+  auto last = Clock::now();
+  double wall_ms = 0.0;
+  for (int frame = 0; !glfwWindowShouldClose(window) && !g_presses.quit &&
+                      (args.frames == 0 || frame < args.frames);
+       ++frame) {
+    glfwPollEvents();
+    const auto now = Clock::now();
+    const double dt = std::min(std::chrono::duration<double>(now - last).count(), kLongestStep);
+    wall_ms = 1e3 * std::chrono::duration<double>(now - last).count();
+    last = now;
+    if (g_presses.toggle_panel) panel = !panel;
+    if (g_presses.toggle_time) time_running = !time_running;
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    const ImGuiIO& io = ImGui::GetIO();
+    Scene next = framebuffer_scene(viewed.scene());
+    HeldKeys keys = io.WantCaptureKeyboard ? HeldKeys{} : held_keys(window);
+    if (!io.WantCaptureMouse) {
+      // Dragging turns the view by the angle the cursor moved; the wheel zooms.
+      const double pixel = next.camera.fov_y / std::max(next.image.height, 1);  // degrees
+      if (io.MouseDown[0]) {
+        keys.motion.turn_deg = -kDragGain * pixel * io.MouseDelta.x;
+        keys.motion.pitch_deg = kDragGain * pixel * io.MouseDelta.y;
+      }
+      if (io.MouseWheel != 0.0f)
+        next.camera.fov_y =
+            std::clamp(next.camera.fov_y * std::exp(-kZoomStep * io.MouseWheel), 0.01, 179.0);
+    }
+    next.camera = move_camera(planet, next.camera, keys.motion, dt);
+    if (!viewed.sun_from_utc()) {
+      next.sun.zenith = std::clamp(
+          next.sun.zenith + keys.sun_zenith * kSunZenithRate * keys.motion.boost * dt, 0.0, 180.0);
+      next.sun.azimuth = std::remainder(
+          next.sun.azimuth + keys.sun_azimuth * kSunAzimuthRate * keys.motion.boost * dt, 360.0);
+    }
+    if (time_running) next.time = std::min(next.time + dt * time_rate, 1e12);
+    bool screenshot = g_presses.screenshot;
+    g_presses = {};
+    if (panel)
+      draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
+                 message);
+    try {
+      viewed.update(next);
+      renderer->set_scene(viewed.scene());
+    } catch (const SceneError& error) {
+      message = error.what();  // the last scene goes on being drawn
+    }
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window, &width, &height);
+    if (width > 0 && height > 0) {  // a minimised window has none
+      renderer->render();
+      renderer->present(0, width, height);
+    }
+    ImGui::Render();
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    glfwSwapBuffers(window);
+    if (screenshot) {
+      message = write_screenshot(timestamped_name(), *renderer, viewed);
+      std::fprintf(stderr, "thalassa: %s\n", message.c_str());
+    }
+  }
+  for (const std::string& warning : renderer->stats().warnings) print_error("warning: " + warning);
+  if (!args.screenshot.empty()) {
+    const std::string result = write_screenshot(args.screenshot, *renderer, viewed);
+    if (result.rfind("wrote", 0) != 0) {
+      print_error(result);
+      return kExitRuntimeFailure;
+    }
+  }
+  return kExitOk;
+}
+
+}  // namespace thalassa::cli

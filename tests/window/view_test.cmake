@@ -1,0 +1,79 @@
+cmake_minimum_required(VERSION 3.25)
+# `thalassa view` under Xvfb: the window's frame is the headless render's, its screenshot's scene
+# file draws the same image again, its clock runs unless paused, and bad input or no display
+# stop it before anything is written.
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+set(SMALL --set image.width=48 --set image.height=32)
+
+function(run_view name)
+  execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 640x480x24" ${THALASSA} view ${SMALL}
+                          ${ARGN} RESULT_VARIABLE status ERROR_VARIABLE error)
+  set(${name}_status ${status} PARENT_SCOPE)
+  set(${name}_error "${error}" PARENT_SCOPE)
+endfunction()
+
+# Three frames, the clock stopped, the last one written.
+run_view(paused --frames 3 --paused --screenshot ${WORK}/view.exr)
+if(NOT paused_status EQUAL 0)
+  message(FATAL_ERROR "view failed (${paused_status}): ${paused_error}")
+endif()
+foreach(file view.exr view.png view.json)
+  if(NOT EXISTS ${WORK}/${file})
+    message(FATAL_ERROR "view wrote no ${file}")
+  endif()
+endforeach()
+execute_process(COMMAND ${THALASSA} render ${SMALL} --backend osmesa -o ${WORK}/headless.exr
+                RESULT_VARIABLE headless_status)
+if(NOT headless_status EQUAL 0)
+  message(FATAL_ERROR "headless render failed")
+endif()
+file(SHA256 ${WORK}/view.png view_png)
+file(SHA256 ${WORK}/headless.png headless_png)
+if(NOT view_png STREQUAL headless_png)
+  message(FATAL_ERROR "the viewer's frame differs from the headless render of its scene")
+endif()
+# The screenshot's scene file is a scene: `thalassa render` draws the same image from it.
+execute_process(COMMAND ${THALASSA} render ${WORK}/view.json --backend osmesa -o ${WORK}/again.exr
+                RESULT_VARIABLE again_status ERROR_VARIABLE again_error)
+if(NOT again_status EQUAL 0)
+  message(FATAL_ERROR "render of the screenshot's scene failed: ${again_error}")
+endif()
+file(SHA256 ${WORK}/again.png again_png)
+if(NOT again_png STREQUAL view_png)
+  message(FATAL_ERROR "the screenshot's scene file draws another image")
+endif()
+
+# The clock runs by default: the scene's time has moved on by the last frame.
+run_view(running --frames 3 --screenshot ${WORK}/running.exr)
+if(NOT running_status EQUAL 0)
+  message(FATAL_ERROR "view failed (${running_status}): ${running_error}")
+endif()
+file(READ ${WORK}/running.json running)
+string(JSON time GET "${running}" time)
+if(NOT time GREATER 0)
+  message(FATAL_ERROR "the clock did not run: time ${time}")
+endif()
+
+# Bad input: status 2 before any window, nothing written.
+run_view(bad_key --set camera.height=-20000 --frames 1 --screenshot ${WORK}/bad.exr)
+if(NOT bad_key_status EQUAL 2 OR NOT bad_key_error MATCHES "camera.height")
+  message(FATAL_ERROR "a bad key: status ${bad_key_status}, message: ${bad_key_error}")
+endif()
+run_view(bad_name --frames 1 --screenshot ${WORK}/bad.png)
+if(NOT bad_name_status EQUAL 2 OR NOT bad_name_error MATCHES "--screenshot")
+  message(FATAL_ERROR "a screenshot not .exr: status ${bad_name_status}, message: ${bad_name_error}")
+endif()
+# Without a display: status 1 and a message that says so.
+execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY
+                        ${THALASSA} view ${SMALL} --frames 1 --screenshot ${WORK}/none.exr
+                RESULT_VARIABLE none_status ERROR_VARIABLE none_error)
+if(NOT none_status EQUAL 1 OR NOT none_error MATCHES "display")
+  message(FATAL_ERROR "without a display: status ${none_status}, message: ${none_error}")
+endif()
+foreach(file bad.exr bad.png none.exr)
+  if(EXISTS ${WORK}/${file})
+    message(FATAL_ERROR "a failed view left ${WORK}/${file} behind")
+  endif()
+endforeach()
+message(STATUS "the viewer's frame matches the headless render, and its scene file draws it again")
