@@ -18,6 +18,7 @@
 #include <ctime>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -335,16 +336,19 @@ int run_view(const ViewArgs& args) {
   std::string message;
   auto last = Clock::now();
   double wall_ms = 0.0;
-  for (int frame = 0; !glfwWindowShouldClose(window) && !g_presses.quit &&
-                      (args.frames == 0 || frame < args.frames);
+  bool quit = false;
+  for (int frame = 0;
+       !glfwWindowShouldClose(window) && !quit && (args.frames == 0 || frame < args.frames);
        ++frame) {
     glfwPollEvents();
+    const KeyPresses presses = std::exchange(g_presses, KeyPresses{});
+    quit = presses.quit;
     const auto now = Clock::now();
     const double dt = std::min(std::chrono::duration<double>(now - last).count(), kLongestStep);
     wall_ms = 1e3 * std::chrono::duration<double>(now - last).count();
     last = now;
-    if (g_presses.toggle_panel) panel = !panel;
-    if (g_presses.toggle_time) time_running = !time_running;
+    if (presses.toggle_panel) panel = !panel;
+    if (presses.toggle_time) time_running = !time_running;
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -371,8 +375,7 @@ int run_view(const ViewArgs& args) {
           next.sun.azimuth + keys.sun_azimuth * kSunAzimuthRate * keys.motion.boost * dt, 360.0);
     }
     if (time_running) next.time = std::min(next.time + dt * time_rate, 1e12);
-    bool screenshot = g_presses.screenshot;
-    g_presses = {};
+    bool screenshot = presses.screenshot;
     if (panel)
       draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
                  message);
