@@ -176,6 +176,8 @@ struct StagedScene {
   int sky_map_builds_before = 0;
   bool sky_map_array_before = false;
   double features_ms = -1.0;
+  std::shared_ptr<const ocean::LocalFeatures> features;  // placed for this scene; null: none
+  bool calm_chart_kept = false;
   // Made only where the image's size changed (the accumulator: for the reference method).
   std::optional<gl::HdrTarget> target;
   std::optional<ReferenceAccumulator> accumulator;
@@ -234,6 +236,10 @@ struct Renderer::Impl {
   int sky_map_builds_before = 0;
   bool sky_map_array_before = false;
   double features_ms = -1.0;  // placing the wakes and calm areas (CPU); < 0: the scene has none
+  // The wakes and calm areas placed for the scene (null: none), and whether its calm areas'
+  // chart was the last scene's (RenderStats::calm_chart_kept).
+  std::shared_ptr<const ocean::LocalFeatures> placed_features;
+  bool calm_chart_kept = false;
   double set_scene_ms = -1.0;      // set_scene's own time; < 0: the constructor's scene
   double compile_ms_before = 0.0;  // the shader library's compile time when the scene was set
 
@@ -312,13 +318,31 @@ struct Renderer::Impl {
                            .provider = s.provider.get()});
     const bool space = next.camera.height >= kSpaceModeHeight;
     // Wakes and calm areas in view (issue 9), placed in the nadir frame; none for most scenes.
+    // The calm areas' chart follows from the frame, what the image sees, the planet and the
+    // areas, not from the clock: where only those are the last scene's (a viewer at rest, its
+    // ships and waves moving), the last chart is kept and the wakes alone placed anew.
     std::shared_ptr<const ocean::LocalFeatures> features;
     if (sea_visible && (!next.wakes.empty() || !next.calm_areas.empty())) {
       const auto start = std::chrono::steady_clock::now();
-      features = std::make_shared<const ocean::LocalFeatures>(
-          place_local_features(Planet(next.planet), next, s.nadir));
+      const bool keep_calm =
+          has_scene && placed_features && placed_features->calm && next.camera == scene.camera &&
+          next.planet == scene.planet && next.image.width == scene.image.width &&
+          next.image.height == scene.image.height && next.calm_areas == scene.calm_areas;
+      if (keep_calm) {
+        Scene wakes_only = next;
+        wakes_only.calm_areas.clear();
+        ocean::LocalFeatures placed =
+            place_local_features(Planet(next.planet), wakes_only, s.nadir);
+        placed.calm = placed_features->calm;
+        features = std::make_shared<const ocean::LocalFeatures>(std::move(placed));
+      } else {
+        features = std::make_shared<const ocean::LocalFeatures>(
+            place_local_features(Planet(next.planet), next, s.nadir));
+      }
+      s.calm_chart_kept = keep_calm;
       s.features_ms = milliseconds_since(start);
     }
+    s.features = features;
     if (sea_visible && space)
       s.recipes.push_back(
           {.options = SpaceOceanNodeOptions{.settings = next.ocean,
@@ -409,6 +433,8 @@ struct Renderer::Impl {
     sky_map_builds_before = s.sky_map_builds_before;
     sky_map_array_before = s.sky_map_array_before;
     features_ms = s.features_ms;
+    placed_features = std::move(s.features);
+    calm_chart_kept = s.calm_chart_kept;
     shaders.start_use_record();
     compile_ms_before = shaders.compile_ms();
   }
@@ -839,6 +865,7 @@ RenderStats Renderer::stats() const {
   stats.sky_provider_kept = m.provider_kept;
   stats.kept_nodes = m.kept_nodes;
   stats.wave_anchor = m.nadir.wave_anchor;
+  stats.calm_chart_kept = m.calm_chart_kept;
   if (m.set_scene_ms >= 0.0) stats.setup_ms.emplace_back("renderer.set_scene", m.set_scene_ms);
   if (const double compile = m.shaders.compile_ms() - m.compile_ms_before; compile > 0.0)
     stats.setup_ms.emplace_back("shaders.compile", compile);

@@ -205,8 +205,8 @@ TEST(RendererSetScene, RefusedSceneLeavesTheLastOne) {
 }
 
 // Wakes and calm areas are placed anew for each scene: the same ones in view keep the sea's node,
-// a moved camera (the features move in its frame) makes it again, and either way the image is a
-// new Renderer's.
+// the clock alone keeps the calm areas' chart, a moved camera (the features move in its frame)
+// makes both again, and each image is a new Renderer's.
 TEST(RendererSetScene, PlacesWakesAndCalmAreasAnew) {
   auto context = test::make_test_context();
   const Scene first = test::scene_from(R"({"image": {"width": 48, "height": 32},
@@ -227,6 +227,16 @@ TEST(RendererSetScene, PlacesWakesAndCalmAreasAnew) {
   EXPECT_TRUE(kept(renderer.stats(), "ocean"));
   EXPECT_EQ(drawn(renderer).rgba, first_image.rgba);
 
+  // The clock alone: the ship moves on, the calm areas' chart is the last one, and the image a
+  // new Renderer's all the same.
+  Scene later = first;
+  later.time += 3.0;
+  renderer.set_scene(later);
+  const Image later_image = drawn(renderer);
+  EXPECT_TRUE(renderer.stats().calm_chart_kept);
+  EXPECT_NE(later_image.rgba, first_image.rgba);
+  EXPECT_EQ(later_image.rgba, drawn_alone(*context, later, renderer.stats().wave_anchor).rgba);
+
   Scene moved = first;
   moved.camera.lat -= 0.0005;  // 55 m south
   moved.time += 2.0;           // and the ship 16 m on
@@ -234,6 +244,7 @@ TEST(RendererSetScene, PlacesWakesAndCalmAreasAnew) {
   const Image moved_image = drawn(renderer);
   EXPECT_FALSE(kept(renderer.stats(), "ocean"));
   EXPECT_TRUE(kept(renderer.stats(), "sky"));
+  EXPECT_FALSE(renderer.stats().calm_chart_kept);
   EXPECT_NE(moved_image.rgba, first_image.rgba);
   EXPECT_EQ(moved_image.rgba, drawn_alone(*context, moved, renderer.stats().wave_anchor).rgba);
 }

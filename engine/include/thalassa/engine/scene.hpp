@@ -47,6 +47,7 @@ struct CameraSettings {
   double pitch = -5.0;     // degrees above the horizontal, [-90, 90]
   double roll = 0.0;       // degrees, [-180, 180]
   double fov_y = 45.0;     // vertical field of view, degrees, [0.01, 179]
+  bool operator==(const CameraSettings&) const = default;
 };
 
 struct SunSettings {
@@ -60,6 +61,7 @@ struct SunSettings {
 struct PlanetSettings {
   PlanetShape shape = PlanetShape::Wgs84;
   double radius = 6371000.0;  // metres, sphere only, [1e3, 1e8]
+  bool operator==(const PlanetSettings&) const = default;
 };
 
 struct OceanSettings {
@@ -104,6 +106,7 @@ struct SkySettings {
 struct GeoPoint {
   double lat = 0.0;  // geodetic latitude, degrees, [-90, 90]
   double lon = 0.0;  // longitude, degrees, [-180, 180]
+  bool operator==(const GeoPoint&) const = default;
 };
 
 struct TrackPoint {
@@ -138,6 +141,7 @@ struct CalmAreaSettings {
   std::vector<std::vector<GeoPoint>> holes;
   double scale = 0.2;   // amplitude factor inside, [0, 1]
   double fade = 100.0;  // m, [0, 1e6]: the factor is reached this far inside the edge
+  bool operator==(const CalmAreaSettings&) const = default;
 };
 
 struct Scene {

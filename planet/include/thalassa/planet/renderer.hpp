@@ -152,6 +152,10 @@ struct RenderStats {
   // nearest the camera, RendererOptions::wave_anchor, or the one an earlier scene kept
   // (Renderer::set_scene).
   Geodetic wave_anchor;
+  // Renderer::set_scene kept the last scene's chart of the calm areas in view (planet/
+  // local_features.hpp), where the camera, the image's size, the planet and the areas were the
+  // same (the clock alone moved): "features.place" then placed the wakes alone.
+  bool calm_chart_kept = false;
   // The reference: its grid's cell, pixels (ReferenceSampling::grid_cell); 0 for the others.
   double reference_grid_cell = 0.0;
 };
