@@ -82,6 +82,18 @@ TEST(RendererSetScene, DrawsWhatANewRendererDrawsAndKeepsWhatTheScenesShare) {
   EXPECT_EQ(renderer.scene().camera.lon, next.camera.lon);
   EXPECT_EQ(renderer.hdr_texture(), texture);  // a host's texture stays while the size does
 
+  // The image resized (a window's): the nodes are kept and draw the new size as a new Renderer
+  // would.
+  Scene resized = next;
+  resized.image.width = 80;
+  resized.image.height = 45;
+  renderer.set_scene(resized);
+  const Image resized_image = drawn(renderer);
+  EXPECT_TRUE(kept(renderer.stats(), "ocean"));
+  EXPECT_EQ(resized_image.width, 80);
+  EXPECT_EQ(resized_image.height, 45);
+  EXPECT_EQ(resized_image.rgba, drawn_alone(*context, resized, stats.wave_anchor).rgba);
+
   // Only the sea's settings change: the sky node stays, the sea is made again.
   Scene windier = next;
   windier.ocean.wind_speed = 15.0;
