@@ -238,6 +238,10 @@ void add_view_command(CLI::App& app, ViewArgs& args) {
   view->add_flag("--no-panel", args.no_panel, "Start with the panel hidden (H shows it)");
   view->add_option("--screenshot", args.screenshot,
                    "Write the last frame to this EXR (with its PNG and scene JSON) on closing");
+  view->footer(
+      "Keys: W/S A/D or the arrows fly, R/F or PgUp/PgDn climb, Shift x5; drag to look, wheel to "
+      "zoom; I/K J/L move the sun; Space stops the clock; H hides the panel; P or F12 writes a "
+      "screenshot (EXR, PNG, scene JSON) in the working folder; Esc or Q quits. docs/viewer.md");
 }
 
 int run_view(const ViewArgs& args) {
