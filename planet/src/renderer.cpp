@@ -9,6 +9,7 @@
 #include <optional>
 #include <variant>
 
+#include "elapsed_ms.hpp"
 #include "reference_accumulator.hpp"
 #include "sky_provider_factory.hpp"
 #include "space_ocean_node.hpp"
@@ -129,11 +130,6 @@ std::shared_ptr<const ocean::LocalFeatures>* recipe_features(NodeRecipe& recipe)
   return nullptr;
 }
 
-double milliseconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
-      .count();
-}
-
 // Throws std::invalid_argument for reference settings out of their ranges (ReferenceSampling).
 void check_reference_sampling(const ReferenceSampling& r) {
   if (r.min_samples >= 1 && r.max_samples >= r.min_samples && r.row_tolerance > 0.0 &&
@@ -210,7 +206,6 @@ void check_drawable(const Scene& scene, const std::string& source) {
 struct Renderer::Impl {
   GlContext& context;
   RendererOptions renderer_options;
-  ReferenceSampling reference;
   gl::ShaderLibrary shaders;
   GlInfo info;
   gl::GpuTimer timer;
@@ -246,7 +241,6 @@ struct Renderer::Impl {
   Impl(GlContext& context_, const Scene& scene_, const RendererOptions& options)
       : context(context_),
         renderer_options(options),
-        reference(options.reference),
         shaders([&] {
           std::vector<std::filesystem::path> roots(options.shader_roots.begin(),
                                                    options.shader_roots.end());
@@ -261,7 +255,8 @@ struct Renderer::Impl {
       for (const auto& name : info.missing) missing += (missing.empty() ? "" : ", ") + name;
       throw gl::GlError("this OpenGL context lacks what thalassa needs: " + missing);
     }
-    if (options.method == ocean::OceanMethod::reference) check_reference_sampling(reference);
+    if (options.method == ocean::OceanMethod::reference)
+      check_reference_sampling(options.reference);
     StagedScene staged = stage(scene_, false);
     commit(std::move(staged));
   }
@@ -305,7 +300,7 @@ struct Renderer::Impl {
     s.provider = sky_cache->provider(context, next, options, {}, s.provider_kept);
     s.sky_map_builds_before = s.provider->sky_map_builds();
     s.sky_map_array_before = s.provider->sky_map_array_ms() > 0.0;
-    s.provider_ms = milliseconds_since(provider_start);
+    s.provider_ms = elapsed_ms(provider_start);
     // A photograph's sun is where the photograph has it.
     if (const auto sun = s.provider->sun_direction()) s.inputs.sun_direction = *sun;
     bool sky_visible = false, sea_visible = false;
@@ -340,7 +335,7 @@ struct Renderer::Impl {
             place_local_features(Planet(next.planet), next, s.nadir));
       }
       s.calm_chart_kept = keep_calm;
-      s.features_ms = milliseconds_since(start);
+      s.features_ms = elapsed_ms(start);
     }
     s.features = features;
     if (sea_visible && space)
@@ -403,8 +398,10 @@ struct Renderer::Impl {
     return s;
   }
 
-  // Forgets the last scene's frames: their times (Renderer::reset_timings) and the reference's
-  // results.
+  // Renderer::reset_timings.
+  void reset_timings();
+  // Forgets the last scene's frames: their times (reset_timings), the order of their passes and
+  // the reference's results.
   void forget_frames();
 
   // Puts a staged scene in place; nothing here throws but an allocation.
@@ -439,15 +436,20 @@ struct Renderer::Impl {
     compile_ms_before = shaders.compile_ms();
   }
 
-  // One frame at the inputs' pixel offset; its GPU (or wall) time in ms.
-  double draw_frame() {
+  // One frame at the inputs' pixel offset, drawn and its timer queries read: its time and its
+  // passes', which record_frame adds to the statistics.
+  struct DrawnFrame {
     gl::PassTime frame;
+    std::vector<gl::PassTime> passes;
+  };
+  DrawnFrame draw_frame() {
+    DrawnFrame drawn;
     {
       const gl::StateGuard guard;  // a host's context gets its state back
       graph.render(inputs, target, shaders, timer);
     }
-    const auto passes = timer.resolve(frame);
-    return record_frame(frame, passes);
+    drawn.passes = timer.resolve(drawn.frame);
+    return drawn;
   }
 
   // A resolved frame's passes into pass_ms and pass_order; its GPU (or wall) time in ms.
@@ -512,6 +514,7 @@ struct Renderer::Impl {
     samples = 0;
     sample_row_change = 0.0;
     sample_row_changes.clear();
+    const ReferenceSampling& reference = renderer_options.reference;
     const int least = std::min(reference.min_samples, max_samples);
     // The strata the ocean node's per-stratum cell cap was set for (reference_sun_cells).
     const int strata = reference_strata(reference);
@@ -675,7 +678,7 @@ void Renderer::set_scene(const Scene& scene) {
   m.context.make_current();
   const auto start = std::chrono::steady_clock::now();
   m.commit(m.stage(scene, true));
-  m.set_scene_ms = milliseconds_since(start);
+  m.set_scene_ms = elapsed_ms(start);
   m.forget_frames();
   // The reference compiles before its samples are timed, as in the constructor; the other
   // methods draw a frame that compiled anything again (render()).
@@ -685,17 +688,17 @@ void Renderer::set_scene(const Scene& scene) {
   }
 }
 
-void Renderer::reset_timings() {
-  impl_->frame_ms.clear();
-  impl_->pass_ms.clear();
-  impl_->timer_fallbacks_before = impl_->timer.fallback_frames();
+void Renderer::reset_timings() { impl_->reset_timings(); }
+
+void Renderer::Impl::reset_timings() {
+  frame_ms.clear();
+  pass_ms.clear();
+  timer_fallbacks_before = timer.fallback_frames();
 }
 
 void Renderer::Impl::forget_frames() {
-  frame_ms.clear();
-  pass_ms.clear();
+  reset_timings();
   pass_order.clear();
-  timer_fallbacks_before = timer.fallback_frames();
   samples = 1;
   sample_row_change = 0.0;
   sample_row_changes.clear();
@@ -727,20 +730,14 @@ void Renderer::render() {
   }
   const std::size_t programs = m.shaders.program_count();
   const int fallbacks = m.timer.fallback_frames();
-  double ms = m.draw_frame();
+  Impl::DrawnFrame drawn = m.draw_frame();
   // A frame that compiled programs (the first after a set_scene that needs new ones) is not
-  // timed: its passes' times are taken back and the frame is drawn again.
+  // timed: it is drawn again, and the second one's times are recorded.
   if (m.shaders.program_count() != programs) {
-    for (const std::string& name : m.pass_order) {
-      auto it = m.pass_ms.find(name);
-      if (it == m.pass_ms.end() || it->second.empty()) continue;
-      it->second.pop_back();
-      if (it->second.empty()) m.pass_ms.erase(it);
-    }
     m.timer_fallbacks_before += m.timer.fallback_frames() - fallbacks;
-    ms = m.draw_frame();
+    drawn = m.draw_frame();
   }
-  m.frame_ms.push_back(ms);
+  m.frame_ms.push_back(m.record_frame(drawn.frame, drawn.passes));
 }
 
 Image Renderer::image() const {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "elapsed_ms.hpp"
 #include "sky_provider_factory.hpp"
 #include "thalassa/atmosphere/environment_map.hpp"
 #include "thalassa/atmosphere/gl/sky_provider.hpp"
@@ -24,10 +25,6 @@ namespace thalassa {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double elapsed_ms(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 void check_options(const SkyExportOptions& options) {
   if (options.map_size < 1 || options.map_size > kSkyExportMaxSize)
