@@ -2,7 +2,6 @@
 #include "thalassa/planet/calm_area.hpp"
 
 #include <GeographicLib/Geodesic.hpp>
-#include <GeographicLib/Gnomonic.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -32,6 +31,16 @@ struct PlanarRing {
   std::vector<double> x, y;  // gnomonic coordinates, m
 };
 
+// Squared distance (m^2) from (px, py) to the segment (ax, ay)-(bx, by) of the plane.
+double segment_distance2(double px, double py, double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay;
+  const double len2 = dx * dx + dy * dy;
+  const double t =
+      len2 > 0.0 ? std::clamp(((px - ax) * dx + (py - ay) * dy) / len2, 0.0, 1.0) : 0.0;
+  const double ex = ax + t * dx - px, ey = ay + t * dy - py;
+  return ex * ex + ey * ey;
+}
+
 // Crossing-number test of a closed planar ring.
 bool inside_ring(const PlanarRing& r, double px, double py) {
   bool in = false;
@@ -56,15 +65,51 @@ struct EdgeBound {
   double half = 0.0;
 };
 
+// A point in the gnomonic projection centred at the area's centre (Karney 2013, sec. 8; what
+// GeographicLib::Gnomonic::Forward computes, with the distance from the centre kept).
+struct Projected {
+  double x = NAN, y = NAN;  // m; NaN beyond the projection's horizon (rk <= 0)
+  double rk = 0.0;          // the geodesic scale M12 from the centre
+  double s = 0.0;           // m: geodesic distance from the centre
+};
+
 struct CalmArea::Impl {
   GeographicLib::Geodesic geodesic;
-  GeographicLib::Gnomonic gnomonic;
   Planet planet;
   std::vector<std::vector<GeoPoint>> rings;  // exterior first
   std::vector<PlanarRing> planar;
   std::vector<EdgeBound> edges;
-  Impl(const Planet& p)
-      : geodesic(p.equatorial_radius(), p.flattening()), gnomonic(geodesic), planet(p) {}
+  double radius = 0.0;            // m: the largest geodesic distance of a vertex from the centre
+  double straightness = 0.0;      // m: bound on the gnomonic edges' distance from the geodesic ones
+  double curvature_radius = 0.0;  // m: 1 / sqrt of the surface's largest Gaussian curvature
+  Impl(const Planet& p) : geodesic(p.equatorial_radius(), p.flattening()), planet(p) {
+    // K = 1 / (M N) is 1 / b^2 on the equator and b^2 / a^4 at the poles, the extremes.
+    const double a = p.equatorial_radius(), b = p.polar_radius();
+    curvature_radius = 1.0 / std::sqrt(std::max(1.0 / (b * b), b * b / (a * a * a * a)));
+  }
+  Projected project(const GeoPoint& centre, double lat, double lon) const {
+    Projected q;
+    double azi1, azi2, m12, M21, S12;
+    geodesic.GenInverse(centre.lat, centre.lon, lat, lon,
+                        GeographicLib::Geodesic::DISTANCE | GeographicLib::Geodesic::AZIMUTH |
+                            GeographicLib::Geodesic::REDUCEDLENGTH |
+                            GeographicLib::Geodesic::GEODESICSCALE,
+                        q.s, azi1, azi2, m12, q.rk, M21, S12);
+    if (q.rk > 0.0) {
+      const double rho = m12 / q.rk;
+      double sin_azi, cos_azi;
+      GeographicLib::Math::sincosd(azi1, sin_azi, cos_azi);
+      q.x = rho * sin_azi;
+      q.y = rho * cos_azi;
+    }
+    return q;
+  }
+  bool inside(double x, double y) const {
+    if (!inside_ring(planar[0], x, y)) return false;
+    for (std::size_t i = 1; i < planar.size(); ++i)
+      if (inside_ring(planar[i], x, y)) return false;
+    return true;
+  }
 };
 
 CalmArea::CalmArea(const Planet& planet, const CalmAreaSettings& settings)
@@ -106,13 +151,17 @@ CalmArea::CalmArea(const Planet& planet, const CalmAreaSettings& settings)
       impl_->geodesic.Inverse(centre_.lat, centre_.lon, p.lat, p.lon, s12);
       if (!(s12 <= kMaxCalmAreaRadius))
         fail(name, "a vertex is farther than 5000 km from the polygon's centre");
-      double x, y, azi, rk;
-      impl_->gnomonic.Forward(centre_.lat, centre_.lon, p.lat, p.lon, x, y, azi, rk);
-      pr.x.push_back(x);
-      pr.y.push_back(y);
+      const Projected q = impl_->project(centre_, p.lat, p.lon);
+      pr.x.push_back(q.x);
+      pr.y.push_back(q.y);
+      impl_->radius = std::max(impl_->radius, q.s);
     }
     impl_->planar.push_back(std::move(pr));
   }
+  // Karney's lowest-order bound on a gnomonic chord's distance from its geodesic, f (r/2a)^3 r
+  // for ends within r of the centre, taken twice for the orders it leaves out.
+  const double r = impl_->radius, a = planet.equatorial_radius();
+  impl_->straightness = 2.0 * std::abs(planet.flattening()) * std::pow(r / (2.0 * a), 3) * r;
 
   // Bounds: the edges' latitude extents and longitude spans (geodesic_segment.hpp), every
   // longitude when a pole is inside.
@@ -156,14 +205,41 @@ CalmArea& CalmArea::operator=(const CalmArea& o) {
 
 bool CalmArea::contains(double lat, double lon) const {
   if (!std::isfinite(lat) || !std::isfinite(lon)) return false;
-  double x, y, azi, rk;
-  impl_->gnomonic.Forward(centre_.lat, centre_.lon, lat, lon, x, y, azi, rk);
-  if (!(rk > 0.0) || !std::isfinite(x) || !std::isfinite(y)) return false;  // far hemisphere
-  if (!inside_ring(impl_->planar[0], x, y)) return false;
-  for (std::size_t i = 1; i < impl_->planar.size(); ++i) {
-    if (inside_ring(impl_->planar[i], x, y)) return false;
+  const Projected q = impl_->project(centre_, lat, lon);
+  if (!std::isfinite(q.x) || !std::isfinite(q.y)) return false;  // far hemisphere
+  return impl_->inside(q.x, q.y);
+}
+
+// Let P be the point, d its geodesic distance to the edges, g the planar distance in the
+// projection to the straight chords between the projected vertices, delta the straightness
+// bound. The projection's scale (plane length over true length) lies in [1, 1/M^2] (radial
+// 1/M^2, azimuthal 1/M, M = rk <= 1 on a surface of positive curvature). So
+// - d <= g + delta: the chord's nearest point maps to a curve no longer than g, ending within
+//   delta of the geodesic edge;
+// - g <= sigma (d + delta), sigma = 1/M^2 at its smallest over the true shortest path and the
+//   foot's distance from the chord; every point of those lies within S = s_P + g + delta of the
+//   centre, where M >= cos(S / R_K) (Sturm comparison of M'' + K M = 0 with K <= 1/R_K^2,
+//   M(0) = 1, M'(0) = 0), while S < pi/2 R_K.
+// Hence |g - d| <= (sigma - 1)(g + delta) + sigma delta.
+CalmArea::DistanceEstimate CalmArea::estimate_signed_distance(double lat, double lon) const {
+  constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  if (!std::isfinite(lat) || !std::isfinite(lon)) return {-kInfinity, kInfinity};
+  const Projected q = impl_->project(centre_, lat, lon);
+  if (!std::isfinite(q.x) || !std::isfinite(q.y)) return {-kInfinity, kInfinity};
+  double g2 = kInfinity;
+  for (const PlanarRing& ring : impl_->planar) {
+    const std::size_t n = ring.x.size();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++)
+      g2 = std::min(g2, segment_distance2(q.x, q.y, ring.x[j], ring.y[j], ring.x[i], ring.y[i]));
   }
-  return true;
+  const double g = std::sqrt(g2);
+  const double distance = impl_->inside(q.x, q.y) ? g : -g;
+  const double delta = impl_->straightness;
+  const double reach = (q.s + g + delta) / impl_->curvature_radius;
+  if (!(impl_->radius <= kCalmEstimateMaxRadius) || !(reach < 0.5 * std::numbers::pi))
+    return {distance, kInfinity};
+  const double sigma = 1.0 / (std::cos(reach) * std::cos(reach));
+  return {distance, (sigma - 1.0) * (g + delta) + sigma * delta};
 }
 
 double CalmArea::signed_distance(double lat, double lon) const {

@@ -25,6 +25,12 @@ constexpr int kChartBlock = 8;
 // corners' for the block to be filled by interpolation: s then differs from the exact one by
 // at most 1.5 |1 - scale| tolerance / fade (the smoothstep's slope), 1.5e-4 for a 100 m fade.
 constexpr double kChartDistanceTolerance = 0.01;
+// Largest error bound (m) of CalmArea::estimate_signed_distance for a sample's value to be taken
+// from it rather than from the exact CalmArea::signed_distance: 1 mm, a tenth of the
+// interpolation's tolerance (s then within 1.5 |1 - scale| 0.011 m / fade of the exact one).
+// Where the bound is larger, the estimate still decides, with its bound, whether a block is
+// wholly outside or deeper than the fade.
+constexpr double kChartEstimateTolerance = 1e-3;
 // Samples of s = 1 kept around the areas' projected extent, so the chart's border is outside.
 constexpr int kChartBorderSamples = 2;
 
@@ -52,10 +58,12 @@ double horizon_length(const Planet& planet, double height) {
 }
 
 // Builds the chart of the areas in view over [lo, hi] (m, frame plane). The signed distances
-// are exact (CalmArea::signed_distance) where they are computed: at block centres, corners and
-// edge midpoints. A block of samples is filled without computing more of them when
-// - for every area the block is wholly outside (d + r <= 0) or wholly deeper than the fade
-//   (d - r >= fade), r the block's radius (the distance is 1-Lipschitz): s is exact there;
+// are computed at block centres, corners and edge midpoints, as CalmArea's estimate where its
+// bound is below kChartEstimateTolerance, else exactly (CalmArea::signed_distance). A block of
+// samples is filled without computing more of them when
+// - for every area the block is wholly outside (d + e + r <= 0) or wholly deeper than the fade
+//   (d - e - r >= fade), e the distance's error bound, r the block's radius (the distance is
+//   1-Lipschitz): s is exact there;
 // - or every area's distance at the block's centre and edge midpoints is within
 //   kChartDistanceTolerance of the bilinear interpolation of its corners: s = fade(d) of the
 //   interpolated d (exact for a straight edge; near a vertex the block is split instead);
@@ -69,7 +77,7 @@ class ChartBuilder {
         local_(planet, frame.nadir.lat, frame.nadir.lon, 0.0),
         areas_(areas),
         chart_(chart),
-        distances_(areas.size() * chart.scale.size(), NAN) {}
+        distances_(areas.size() * chart.scale.size()) {}
 
   void fill(int i0, int j0, int size) {
     const int ci = i0 + size / 2, cj = j0 + size / 2, h = size / 2;
@@ -82,14 +90,21 @@ class ChartBuilder {
     double constant = 1.0;
     std::vector<std::size_t> interpolated;
     for (std::size_t a = 0; a < areas_.size(); ++a) {
-      const double d = distance(a, ci, cj);
-      if (d + radius <= 0.0) continue;
-      if (d - radius >= areas_[a].settings().fade) {
+      // Outside (-1), deeper than the fade (1), or neither (0), for d within +-e of the centre's.
+      const double fade = areas_[a].settings().fade;
+      auto side = [&](const Distance& c) {
+        return c.d + c.e + radius <= 0.0 ? -1 : c.d - c.e - radius >= fade ? 1 : 0;
+      };
+      int where = side(estimate(a, ci, cj));
+      if (where == 0) where = side(precise(a, ci, cj));
+      if (where < 0) continue;
+      if (where > 0) {
         constant *= areas_[a].settings().scale;
         continue;
       }
+      const double d = distance(a, ci, cj);
       if (size == 1) {
-        interpolated.push_back(a);  // the corners themselves: exact
+        interpolated.push_back(a);  // the corners' own values
         continue;
       }
       const double d00 = distance(a, i0, j0), d10 = distance(a, i0 + size, j0);
@@ -130,21 +145,36 @@ class ChartBuilder {
     const glm::dvec2 xy = chart_.origin + chart_.spacing * glm::dvec2(i, j);
     return local_.to_ecef({xy.x, xy.y, ocean::sea_surface_sag(frame_.sea_surface, xy)});
   }
-  double distance(std::size_t a, int i, int j) {
-    double& d = distances_[a * chart_.scale.size() + index(i, j)];
-    if (std::isnan(d)) {
+  // A sample's signed distance d (m) from area a's edge and the bound e (m) on its error.
+  struct Distance {
+    double d = NAN, e = INFINITY;
+  };
+  const Distance& estimate(std::size_t a, int i, int j) {
+    Distance& x = distances_[a * chart_.scale.size() + index(i, j)];
+    if (std::isnan(x.d)) {
       const Geodetic g = planet_.geodetic(ecef(i, j));
-      d = areas_[a].signed_distance(g.lat, g.lon);
+      const CalmArea::DistanceEstimate estimate = areas_[a].estimate_signed_distance(g.lat, g.lon);
+      x = {estimate.distance, estimate.error};
     }
-    return d;
+    return x;
   }
+  // The same, to within kChartEstimateTolerance.
+  const Distance& precise(std::size_t a, int i, int j) {
+    Distance& x = distances_[a * chart_.scale.size() + index(i, j)];
+    if (estimate(a, i, j).e > kChartEstimateTolerance) {
+      const Geodetic g = planet_.geodetic(ecef(i, j));
+      x = {areas_[a].signed_distance(g.lat, g.lon), 0.0};
+    }
+    return x;
+  }
+  double distance(std::size_t a, int i, int j) { return precise(a, i, j).d; }
 
   const Planet& planet_;
   const NadirFrame& frame_;
   const LocalFrame local_;
   const std::vector<CalmArea>& areas_;
   ocean::CalmScaleChart& chart_;
-  std::vector<double> distances_;  // per area and sample, m; NaN until computed
+  std::vector<Distance> distances_;  // per area and sample; NaN until computed
 };
 
 // The chart: the areas in view, sampled over [lo, hi] (m, frame plane) with a border of s = 1,

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <vector>
@@ -201,6 +202,92 @@ TEST(CalmArea, SignedDistanceMatchesGeodesicBruteForce) {
     }
   }
   std::printf("worst |signed distance - brute force| = %.3g m\n", worst);
+}
+
+// The gnomonic estimate of the signed distance (CalmArea::estimate_signed_distance) is within
+// its stated bound of the exact distance, and the bound is small where the sea's chart uses it:
+// a 2 km slick (wake_demo's), 50 km and 400 km squares at 45 N (where the gnomonic's geodesics
+// bend most), one with a hole, one around the north pole, one across the antimeridian, and the
+// 50 km square on a sphere (no bend at all). Points fall in a box 1.6 times the polygon's and in
+// the band 300 m either side of its edges. The exact distance converges to 1e-9 m; 1e-7 m is
+// allowed for it.
+TEST(CalmArea, DistanceEstimateIsWithinItsBound) {
+  struct Case {
+    const char* name;
+    Planet planet;
+    CalmAreaSettings settings;
+    // m: the largest bound allowed within 300 m of an edge, about (sigma - 1) 300 m with the
+    // centre's distance for S (calm_area.cpp): the slick's is below kChartEstimateTolerance
+    // (local_features.cpp, 1 mm), so the chart takes the estimate all along its edge.
+    double near_edge_bound;
+  };
+  const std::vector<GeoPoint> slick = {
+      {35.978969, -20.005489}, {35.982374, -20.005797}, {35.986036, -20.005967},
+      {35.990584, -20.011585}, {35.994791, -20.017112}, {35.994842, -20.021353},
+      {35.995538, -20.025877}, {35.993218, -20.027766}, {35.988250, -20.023631},
+      {35.983574, -20.020210}, {35.980435, -20.014388}, {35.978327, -20.009011}};
+  CalmAreaSettings holed = Area(Square(45.0, 10.0, 1.8));
+  holed.holes = {Square(45.3, 10.2, 0.4)};
+  const std::vector<Case> cases = {
+      {"slick", Planet(), Area(slick, 0.08, 150.0), 1e-4},
+      {"50 km", Planet(), Area(Square(45.0, 10.0, 0.225)), 1e-2},
+      {"400 km with a hole", Planet(), holed, 1.0},
+      {"north pole", Planet(), Area({{89.8, 0.0}, {89.8, 90.0}, {89.8, 180.0}, {89.8, -90.0}}),
+       1e-2},
+      {"antimeridian", Planet(),
+       Area({{-10.1, 179.9}, {-10.1, -179.9}, {-9.9, -179.9}, {-9.9, 179.9}}), 5e-3},
+      {"50 km, sphere", Planet::sphere(6371e3), Area(Square(45.0, 10.0, 0.225)), 1e-2},
+  };
+  std::mt19937 rng(7);
+  for (const Case& c : cases) {
+    const CalmArea area(c.planet, c.settings);
+    const GeographicLib::Geodesic g(c.planet.equatorial_radius(), c.planet.flattening());
+    const GeoBounds& b = area.bounds();
+    const double span_lat = b.north - b.south;
+    const double span_lon = b.full_longitude() ? 360.0 : b.east - b.west + (b.east < b.west) * 360;
+    std::uniform_real_distribution<double> u(-0.8, 0.8), unit(0.0, 1.0), band(-300.0, 300.0);
+    double worst_ratio = 0.0, worst_near = 0.0;
+    int bounded = 0;
+    for (int k = 0; k < 600; ++k) {
+      GeoPoint p;
+      bool near_edge = k % 2 == 1;
+      if (near_edge) {
+        // A point `band` metres across an edge, from a point along it.
+        const auto& ring = c.settings.exterior;
+        const std::size_t e = std::size_t(unit(rng) * ring.size()) % ring.size();
+        const GeoPoint& a = ring[e];
+        const GeoPoint& z = ring[(e + 1) % ring.size()];
+        const GeographicLib::GeodesicLine line = g.InverseLine(a.lat, a.lon, z.lat, z.lon);
+        double lat, lon, azi;
+        line.Position(unit(rng) * line.Distance(), lat, lon, azi);
+        g.Direct(lat, lon, azi + 90.0, band(rng), p.lat, p.lon);
+      } else {
+        p.lat = std::clamp(0.5 * (b.north + b.south) + u(rng) * span_lat, -90.0, 90.0);
+        p.lon = b.full_longitude() ? 360.0 * unit(rng) - 180.0
+                                   : std::remainder(b.west + (0.5 + u(rng)) * span_lon, 360.0);
+      }
+      const CalmArea::DistanceEstimate estimate = area.estimate_signed_distance(p.lat, p.lon);
+      if (!std::isfinite(estimate.error)) continue;
+      ++bounded;
+      const double exact = area.signed_distance(p.lat, p.lon);
+      const double difference = std::abs(estimate.distance - exact);
+      EXPECT_LE(difference, estimate.error + 1e-7) << c.name << " at " << p.lat << ", " << p.lon
+                                                   << ": " << estimate.distance << " vs " << exact;
+      if (estimate.error > 1e-6) worst_ratio = std::max(worst_ratio, difference / estimate.error);
+      if (near_edge) worst_near = std::max(worst_near, estimate.error);
+    }
+    EXPECT_GT(bounded, 500) << c.name;
+    EXPECT_LE(worst_near, c.near_edge_bound) << c.name;
+    std::printf("%s: largest bound within 300 m of an edge %.2g m, error / bound at most %.4f\n",
+                c.name, worst_near, worst_ratio);
+  }
+  // No bound for vertices beyond kCalmEstimateMaxRadius, nor for points not finite.
+  const CalmArea wide(Planet(), Area(Square(0.0, 0.0, 12.0)));
+  EXPECT_FALSE(std::isfinite(wide.estimate_signed_distance(11.0, 0.0).error));
+  EXPECT_GT(wide.estimate_signed_distance(11.0, 0.0).distance, 0.0);
+  const CalmArea small(Planet(), Area(Square(0.0, 0.0, 0.1)));
+  EXPECT_FALSE(std::isfinite(small.estimate_signed_distance(NAN, 0.0).error));
+  EXPECT_LT(small.estimate_signed_distance(NAN, 0.0).distance, 0.0);  // outside, as contains()
 }
 
 TEST(CalmArea, FadeIsOneOutsideTheFactorInsideMonotoneAndC1) {

@@ -56,17 +56,19 @@ Geodetic PointAt(const Planet& planet, const NadirFrame& frame, glm::dvec2 xy) {
       local.to_ecef({xy.x, xy.y, ocean::sea_surface_sag(frame.sea_surface, xy)}));
 }
 
-// The chart's samples (block shortcut included) equal the product of the areas' own scales at
-// the samples' points, to float rounding: two overlapping areas, one across the antimeridian,
-// from 2 km up.
+// The chart's samples (block shortcut and distance estimates included) equal the product of the
+// areas' own scales at the samples' points, to float rounding: two overlapping areas, one across
+// the antimeridian, from 2 km up; and a 200 km area seen over its edge, where the estimate's
+// bound exceeds kChartEstimateTolerance near the edge and the exact distance is taken.
 TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
   const Planet planet;
-  for (const double lon : {10.0, 179.99}) {
-    Scene scene = SceneAt(43.0, lon, 2000.0);
+  for (const double lon : {10.0, 179.99, -60.0}) {
+    const bool wide = lon == -60.0;
+    Scene scene = SceneAt(wide ? 42.1 : 43.0, lon, 2000.0);
     scene.camera.heading = 0.0;  // north, down on both areas, the whole of them in the image
     scene.camera.pitch = -60.0;
     scene.camera.fov_y = 90.0;
-    scene.calm_areas = {Square(43.01, lon, 0.01, 0.2, 300.0),
+    scene.calm_areas = {Square(43.01, lon, wide ? 0.9 : 0.01, 0.2, 300.0),
                         Square(43.018, lon + 0.008, 0.006, 0.5, 100.0)};
     const NadirFrame frame = make_nadir_frame(planet, scene.camera);
     const auto start = std::chrono::steady_clock::now();
@@ -92,6 +94,12 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
     // Exact samples and the filled blocks (kChartDistanceTolerance: 1.5e-4 / 100 m of fade).
     EXPECT_LE(worst, 2e-4) << "lon " << lon;
     EXPECT_GT(inside, 100);
+    if (wide) {
+      // The wide area fills the image beyond its edge: the chart holds both sides of the edge.
+      EXPECT_EQ(*std::min_element(chart.scale.begin(), chart.scale.end()), 0.2f);
+      EXPECT_EQ(*std::max_element(chart.scale.begin(), chart.scale.end()), 1.0f);
+      continue;
+    }
     // The border is outside every area, so s = 1 beyond the chart.
     for (int i = 0; i < chart.width; ++i) {
       EXPECT_EQ(chart.scale[i], 1.0f);

@@ -29,7 +29,8 @@ GeoBounds view_footprint(const Planet& planet, const NadirFrame& frame);
 // overlapping areas) on a grid of the frame's (x, y) plane that covers the areas in view (each
 // sample at the point of the sea at rest above it), kCalmChartSamples along its longer side.
 // Samples far from every edge are filled from one distance per 8 x 8 block (the signed distance
-// is 1-Lipschitz), so the cost follows the edges' length on the chart, not its area.
+// is 1-Lipschitz), so the cost follows the edges' length on the chart, not its area. Distances
+// are CalmArea::estimate_signed_distance's where its bound is below 1 mm, else exact.
 ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& scene,
                                           const NadirFrame& frame,
                                           int chart_samples = kCalmChartSamples);
