@@ -103,6 +103,7 @@ struct ViewArgs {
   bool paused = false;     // the scene's clock stopped at the start
   bool no_panel = false;   // the panel hidden at the start
   std::string screenshot;  // the last frame's EXR (PNG and scene JSON beside it); empty: none
+  std::string record;      // a flight file recorded from the first frame; empty: none
 };
 
 struct InfoArgs {

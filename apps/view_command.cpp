@@ -17,9 +17,12 @@
 #include <cstdlib>
 #include <ctime>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -41,6 +44,13 @@ constexpr double kZoomStep = 0.1;
 // throw the camera across the planet.
 constexpr double kLongestStep = 0.25;
 constexpr double kBoost = 5.0;  // a held Shift
+// A recorded flight keeps the camera of a frame at most this often, s: 30 keyframes a second
+// follow a hand-flown path closely (docs/flight.md's splines pass through every key), and a
+// flight file's 100000 keys last 55 minutes.
+constexpr double kRecordInterval = 1.0 / 30.0;
+// The recorded flight's frames per second (a `fly --set`-free default; fly renders it at any
+// size).
+constexpr double kRecordFps = 30.0;
 
 // "%.17g": a double written so that it reads back the same.
 std::string exact(double value) {
@@ -97,6 +107,99 @@ class ViewedScene {
   Scene scene_;
 };
 
+// A file name in the working folder for now (UTC): `pattern` is strftime's, e.g.
+// "thalassa_view_%Y%m%d_%H%M%S.exr".
+std::string timestamped_name(const char* pattern) {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[64];
+  std::strftime(text, sizeof text, pattern, &utc);
+  return text;
+}
+
+// Records the camera as it is flown into a flight file (docs/flight.md) that `thalassa fly`
+// renders again, headless and at any size: the scene at the recording's first frame as the base
+// scene (its `time` the clock's then), and a keyframe of the camera (and the sun, unless sun.utc
+// places it) at the recording's first and last frames and at most every kRecordInterval between.
+// The flight's time advances with the frames' steps, as the clock does at rate 1: then each
+// replayed frame's waves are the viewer's. (A stopped or faster clock is not recorded; the
+// replay's clock runs at rate 1.)
+class FlightRecorder {
+ public:
+  bool active() const { return !path_.empty(); }
+  std::size_t keyframes() const { return keys_.size() + (pending_ ? 1 : 0); }
+  double duration() const { return time_; }
+  // Whether the next keyframe would pass a flight file's limit: the recording must stop.
+  bool full() const { return keys_.size() + 1 >= kFlightMaxKeyframes; }
+
+  void start(std::string path, const ViewedScene& viewed) {
+    path_ = std::move(path);
+    base_ = nlohmann::ordered_json::parse(viewed.merged_json());
+    keys_ = nlohmann::ordered_json::array();
+    time_ = 0.0;
+    last_key_ = -kRecordInterval;
+    pending_.reset();
+  }
+  // The frame drawn after a step of dt seconds (0 for the recording's first).
+  void add(double dt, const ViewedScene& viewed) {
+    if (keys_.size() > 0) time_ += dt;
+    nlohmann::ordered_json key = keyframe(viewed);
+    if (time_ - last_key_ >= kRecordInterval || keys_.empty()) {
+      keys_.push_back(std::move(key));
+      last_key_ = time_;
+      pending_.reset();
+    } else {
+      pending_ = std::move(key);  // kept if this frame turns out to be the last
+    }
+  }
+  // Writes the flight, checked by parsing it as `fly` will; returns the message for the panel
+  // and stderr, which starts with "wrote" when it was written. Stops the recording either way.
+  std::string finish() {
+    if (pending_ && time_ > last_key_) keys_.push_back(std::move(*pending_));
+    pending_.reset();
+    nlohmann::ordered_json flight;
+    char summary[96];
+    std::snprintf(summary, sizeof summary, "%zu keyframes over %.2f s", keys_.size(), time_);
+    flight["description"] = std::string("Recorded by thalassa view: ") + summary + ".";
+    flight["scene"] = std::move(base_);
+    flight["fps"] = kRecordFps;
+    flight["duration"] = time_;
+    flight["keyframes"] = std::move(keys_);
+    const std::string path = std::exchange(path_, std::string());
+    const std::string text = flight.dump(2) + "\n";
+    try {
+      Flight::parse(text, path);
+      PendingOutputs outputs;
+      write_text_atomically(outputs.add(path), text);
+      outputs.commit();
+    } catch (const std::exception& error) {
+      return "flight not written: " + std::string(error.what());
+    }
+    return "wrote " + path + " (" + summary + "; `thalassa fly " + path + " -o DIR` renders it)";
+  }
+
+ private:
+  nlohmann::ordered_json keyframe(const ViewedScene& viewed) const {
+    const Scene& scene = viewed.scene();
+    const CameraSettings& c = scene.camera;
+    nlohmann::ordered_json key;
+    key["time"] = time_;
+    key["camera"] = {{"lat", c.lat},         {"lon", c.lon},     {"height", c.height},
+                     {"heading", c.heading}, {"pitch", c.pitch}, {"roll", c.roll},
+                     {"fov_y", c.fov_y}};
+    if (!viewed.sun_from_utc())
+      key["sun"] = {{"zenith", scene.sun.zenith}, {"azimuth", scene.sun.azimuth}};
+    return key;
+  }
+
+  std::string path_;  // empty: not recording
+  nlohmann::ordered_json base_, keys_;
+  std::optional<nlohmann::ordered_json> pending_;
+  double time_ = 0.0;      // s since the recording's first frame
+  double last_key_ = 0.0;  // s: the last keyframe kept
+};
+
 // What the keys held this frame ask of the camera (planet/camera_controls.hpp) and the sun.
 struct HeldKeys {
   CameraMotion motion;
@@ -122,6 +225,7 @@ struct KeyPresses {
   bool screenshot = false;
   bool toggle_panel = false;
   bool toggle_time = false;
+  bool toggle_record = false;
   bool quit = false;
 };
 KeyPresses g_presses;
@@ -133,6 +237,7 @@ void key_callback(GLFWwindow* window, int key, int scancode, int action, int mod
   if (key == GLFW_KEY_P || key == GLFW_KEY_F12) g_presses.screenshot = true;
   if (key == GLFW_KEY_H) g_presses.toggle_panel = true;
   if (key == GLFW_KEY_SPACE) g_presses.toggle_time = true;
+  if (key == GLFW_KEY_C) g_presses.toggle_record = true;
   if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) g_presses.quit = true;
 }
 
@@ -156,19 +261,10 @@ std::string write_screenshot(const std::string& exr, const Renderer& renderer,
   return "wrote " + exr + ", " + png + " and " + json;
 }
 
-std::string timestamped_name() {
-  const std::time_t now = std::time(nullptr);
-  std::tm utc{};
-  gmtime_r(&now, &utc);
-  char text[64];
-  std::strftime(text, sizeof text, "thalassa_view_%Y%m%d_%H%M%S.exr", &utc);
-  return text;
-}
-
 // The panel: what is drawn and how fast, and the scene's main keys, edited into `next`.
 void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& viewed, Scene& next,
-                bool& time_running, double& time_rate, bool& screenshot,
-                const std::string& message) {
+                bool& time_running, double& time_rate, bool& screenshot, bool& record,
+                const FlightRecorder& recorder, const std::string& message) {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.75f);
   ImGui::Begin("thalassa", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
@@ -214,9 +310,14 @@ void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& vie
     drag("exposure", next.image.exposure, 0.05, 1e-3, 1e6, "%.3f", ImGuiSliderFlags_Logarithmic);
   }
   if (ImGui::Button("screenshot (P)")) screenshot = true;
+  ImGui::SameLine();
+  if (ImGui::Button(recorder.active() ? "stop recording (C)" : "record a flight (C)"))
+    record = true;
+  if (recorder.active())
+    ImGui::Text("recording: %zu keyframes, %.1f s", recorder.keyframes(), recorder.duration());
   ImGui::TextWrapped(
       "W/S A/D or arrows: fly, R/F or PgUp/PgDn: climb, Shift: x%g, drag: look, wheel: zoom, "
-      "I/K J/L: sun, Space: time, H: panel, Esc: quit",
+      "I/K J/L: sun, Space: time, C: record, H: panel, Esc: quit",
       kBoost);
   if (!message.empty()) ImGui::TextWrapped("%s", message.c_str());
   ImGui::End();
@@ -238,9 +339,13 @@ void add_view_command(CLI::App& app, ViewArgs& args) {
   view->add_flag("--no-panel", args.no_panel, "Start with the panel hidden (H shows it)");
   view->add_option("--screenshot", args.screenshot,
                    "Write the last frame to this EXR (with its PNG and scene JSON) on closing");
+  view->add_option("--record", args.record,
+                   "Record the flight from the first frame into this flight file (JSON), written "
+                   "on closing or when C stops it; `thalassa fly` renders it");
   view->footer(
       "Keys: W/S A/D or the arrows fly, R/F or PgUp/PgDn climb, Shift x5; drag to look, wheel to "
-      "zoom; I/K J/L move the sun; Space stops the clock; H hides the panel; P or F12 writes a "
+      "zoom; I/K J/L move the sun; Space stops the clock; C starts and stops recording a flight "
+      "(thalassa_flight_*.json in the working folder); H hides the panel; P or F12 writes a "
       "screenshot (EXR, PNG, scene JSON) in the working folder; Esc or Q quits. docs/viewer.md");
 }
 
@@ -260,6 +365,13 @@ int run_view(const ViewArgs& args) {
   ViewedScene& viewed = *loaded;
   if (!args.screenshot.empty()) {
     if (const std::string problem = check_output("--screenshot", args.screenshot, ".exr");
+        !problem.empty()) {
+      print_error(problem);
+      return kExitInvalidInput;
+    }
+  }
+  if (!args.record.empty()) {
+    if (const std::string problem = check_output("--record", args.record, ".json");
         !problem.empty()) {
       print_error(problem);
       return kExitInvalidInput;
@@ -338,6 +450,8 @@ int run_view(const ViewArgs& args) {
   bool time_running = !args.paused;
   double time_rate = 1.0;
   std::string message;
+  FlightRecorder recorder;
+  bool record_from_start = !args.record.empty();
   auto last = Clock::now();
   double wall_ms = 0.0;
   bool quit = false;
@@ -380,9 +494,10 @@ int run_view(const ViewArgs& args) {
     }
     if (time_running) next.time = std::min(next.time + dt * time_rate, 1e12);
     bool screenshot = presses.screenshot;
+    bool record = presses.toggle_record;
     if (panel)
       draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
-                 message);
+                 record, recorder, message);
     try {
       viewed.update(next);
       renderer->set_scene(viewed.scene());
@@ -398,10 +513,34 @@ int run_view(const ViewArgs& args) {
     ImGui::Render();
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     glfwSwapBuffers(window);
+    // The recording follows the scenes drawn: it starts at this frame and stops after it.
+    const bool start_now = std::exchange(record_from_start, false);
+    if (record && recorder.active()) {
+      recorder.add(dt, viewed);
+      message = recorder.finish();
+      std::fprintf(stderr, "thalassa: %s\n", message.c_str());
+    } else if (record || start_now) {
+      recorder.start(
+          start_now ? args.record : timestamped_name("thalassa_flight_%Y%m%d_%H%M%S.json"), viewed);
+      recorder.add(dt, viewed);
+    } else if (recorder.active()) {
+      recorder.add(dt, viewed);
+      if (recorder.full()) {
+        message = recorder.finish();
+        std::fprintf(stderr, "thalassa: the flight file is full: %s\n", message.c_str());
+      }
+    }
     if (screenshot) {
-      message = write_screenshot(timestamped_name(), *renderer, viewed);
+      message =
+          write_screenshot(timestamped_name("thalassa_view_%Y%m%d_%H%M%S.exr"), *renderer, viewed);
       std::fprintf(stderr, "thalassa: %s\n", message.c_str());
     }
+  }
+  int status = kExitOk;
+  if (recorder.active()) {
+    const std::string result = recorder.finish();
+    std::fprintf(stderr, "thalassa: %s\n", result.c_str());
+    if (result.rfind("wrote", 0) != 0) status = kExitRuntimeFailure;
   }
   for (const std::string& warning : renderer->stats().warnings) print_error("warning: " + warning);
   if (!args.screenshot.empty()) {
@@ -411,7 +550,7 @@ int run_view(const ViewArgs& args) {
       return kExitRuntimeFailure;
     }
   }
-  return kExitOk;
+  return status;
 }
 
 }  // namespace thalassa::cli

@@ -1,7 +1,7 @@
 cmake_minimum_required(VERSION 3.25)
 # `thalassa view` under Xvfb: the window's frame is the headless render's, its screenshot's scene
-# file draws the same image again, its clock runs unless paused, and bad input or no display
-# stop it before anything is written.
+# file draws the same image again, a flight it records replays from the same first frame, its
+# clock runs unless paused, and bad input or no display stop it before anything is written.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(SMALL --set image.width=48 --set image.height=32)
@@ -44,6 +44,31 @@ if(NOT again_png STREQUAL view_png)
   message(FATAL_ERROR "the screenshot's scene file draws another image")
 endif()
 
+# A recorded flight: a flight file whose first frame, rendered by `fly`, is the viewer's first.
+run_view(recorded --frames 4 --paused --record ${WORK}/flight.json)
+if(NOT recorded_status EQUAL 0 OR NOT EXISTS ${WORK}/flight.json)
+  message(FATAL_ERROR "view --record failed (${recorded_status}): ${recorded_error}")
+endif()
+file(READ ${WORK}/flight.json flight)
+string(JSON keys LENGTH "${flight}" keyframes)
+string(JSON first_time GET "${flight}" keyframes 0 time)
+math(EXPR last_key "${keys} - 1")
+string(JSON last_time GET "${flight}" keyframes ${last_key} time)
+string(JSON duration GET "${flight}" duration)
+if(keys LESS 2 OR NOT first_time EQUAL 0 OR NOT last_time STREQUAL duration)
+  message(FATAL_ERROR "the recorded flight's keyframes: ${keys}, from ${first_time} to "
+                      "${last_time}, duration ${duration}")
+endif()
+execute_process(COMMAND ${THALASSA} fly ${WORK}/flight.json --backend osmesa --frames 0
+                        -o ${WORK}/replay RESULT_VARIABLE replay_status ERROR_VARIABLE replay_error)
+if(NOT replay_status EQUAL 0)
+  message(FATAL_ERROR "fly of the recorded flight failed: ${replay_error}")
+endif()
+file(SHA256 ${WORK}/replay/frame_00000.png replay_png)
+if(NOT replay_png STREQUAL headless_png)
+  message(FATAL_ERROR "the recorded flight's first frame differs from the viewer's")
+endif()
+
 # The clock runs by default: the scene's time has moved on by the last frame.
 run_view(running --frames 3 --screenshot ${WORK}/running.exr)
 if(NOT running_status EQUAL 0)
@@ -64,6 +89,10 @@ run_view(bad_name --frames 1 --screenshot ${WORK}/bad.png)
 if(NOT bad_name_status EQUAL 2 OR NOT bad_name_error MATCHES "--screenshot")
   message(FATAL_ERROR "a screenshot not .exr: status ${bad_name_status}, message: ${bad_name_error}")
 endif()
+run_view(bad_record --frames 1 --record ${WORK}/bad.txt)
+if(NOT bad_record_status EQUAL 2 OR NOT bad_record_error MATCHES "--record")
+  message(FATAL_ERROR "a flight not .json: status ${bad_record_status}, message: ${bad_record_error}")
+endif()
 # Without a display: status 1 and a message that says so.
 execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY
                         ${THALASSA} view ${SMALL} --frames 1 --screenshot ${WORK}/none.exr
@@ -71,7 +100,7 @@ execute_process(COMMAND ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_
 if(NOT none_status EQUAL 1 OR NOT none_error MATCHES "display")
   message(FATAL_ERROR "without a display: status ${none_status}, message: ${none_error}")
 endif()
-foreach(file bad.exr bad.png none.exr)
+foreach(file bad.exr bad.png bad.txt none.exr)
   if(EXISTS ${WORK}/${file})
     message(FATAL_ERROR "a failed view left ${WORK}/${file} behind")
   endif()
