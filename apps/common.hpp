@@ -3,6 +3,7 @@
 // run together (DESIGN section 5).
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,6 +13,11 @@
 #include "thalassa/thalassa.hpp"
 
 namespace thalassa::cli {
+
+// Seconds of the steady clock since `start`.
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 // A scene as the user gave it: the file (empty: the embedded default scene), then each --set
 // in order, then `extra` assignments the command implies (e.g. image.exr_type=float).

@@ -26,10 +26,6 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kFrameDigits = 5;  // frame_00000.exr
 
-double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
 std::string frame_name(int frame, const std::string& extension) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%0*d%s", kFrameDigits, frame, extension.c_str());

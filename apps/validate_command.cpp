@@ -30,10 +30,6 @@ using validation::Suite;
 using validation::SuiteCase;
 using validation::TermResult;
 
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
 // Whether every PNG image a case's report names is in `dir` (a resumed run keeps it only then).
 // Its EXR images may be gone: the report shows the PNGs, and its numbers are in results.json
 // (a GPU machine's report comes back without its EXRs where it would not fit: scripts/device).

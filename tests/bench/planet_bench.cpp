@@ -41,8 +41,8 @@ BENCHMARK(PlaceLocalFeatures)
     ->Args({1024, thalassa::kCalmChartSamples})
     ->Unit(benchmark::kMillisecond);
 
-// A square calm area of side state.range(0) km at 45 N (scale 0.2, fade 150 m), seen from 2 km
-// up over its southern edge, looking north 30 degrees down, at 1024 x 576.
+// A square calm area of side state.range(0) km at 45 N (scale 0.2, fade 150 m), seen from
+// state.range(1) m up over its southern edge, looking north 30 degrees down, at 1024 x 576.
 void PlaceSquareCalmArea(benchmark::State& state) {
   const double side = 1e3 * static_cast<double>(state.range(0));
   const thalassa::Planet planet;
@@ -62,7 +62,7 @@ void PlaceSquareCalmArea(benchmark::State& state) {
   scene.calm_areas = {area};
   scene.camera.lat = 45.0 - half_deg;
   scene.camera.lon = 10.0;
-  scene.camera.height = 2000.0;
+  scene.camera.height = static_cast<double>(state.range(1));
   scene.camera.pitch = -30.0;
   int k = 0;
   std::size_t chart = 0;
@@ -76,7 +76,13 @@ void PlaceSquareCalmArea(benchmark::State& state) {
   }
   state.counters["chart_samples"] = static_cast<double>(chart);
 }
-BENCHMARK(PlaceSquareCalmArea)->Arg(2)->Arg(20)->Arg(200)->Unit(benchmark::kMillisecond);
+BENCHMARK(PlaceSquareCalmArea)
+    ->Args({2, 2000})
+    ->Args({20, 2000})
+    ->Args({200, 2000})
+    ->Args({200, 100000})
+    ->Args({1000, 400000})
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
