@@ -104,6 +104,7 @@ struct ViewArgs {
   bool no_panel = false;   // the panel hidden at the start
   std::string screenshot;  // the last frame's EXR (PNG and scene JSON beside it); empty: none
   std::string record;      // a flight file recorded from the first frame; empty: none
+  std::string flight;      // a flight file played in the window; empty: none
 };
 
 struct InfoArgs {

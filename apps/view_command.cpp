@@ -4,7 +4,8 @@
 // and the scene's main keys on a Dear ImGui panel. Every change goes through a SceneBuilder, so
 // that it gets the scene file's checks (and a sun given by sun.utc follows the camera), and a
 // screenshot writes, beside its EXR and PNG, the scene as a file that `thalassa render` draws
-// again at any size. docs/viewer.md.
+// again at any size. It records the flight flown as a flight file for `thalassa fly`, and plays
+// one (`--flight`). docs/viewer.md.
 #include <GLFW/glfw3.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -88,6 +89,8 @@ class ViewedScene {
     if (!sun_from_utc()) {
       set("sun.zenith", next.sun.zenith, scene_.sun.zenith);
       set("sun.azimuth", next.sun.azimuth, scene_.sun.azimuth);
+    } else if (next.sun.utc && *next.sun.utc != *scene_.sun.utc) {
+      sets.push_back("sun.utc=" + *next.sun.utc);  // a played flight's sun.utc channel
     }
     set("time", next.time, scene_.time);
     set("image.width", next.image.width, scene_.image.width);
@@ -262,9 +265,20 @@ std::string write_screenshot(const std::string& exr, const Renderer& renderer,
 }
 
 // The panel: what is drawn and how fast, and the scene's main keys, edited into `next`.
+// A flight played in the window (`--flight`): its time, advanced by the clock, gives each
+// frame's camera, sun and scene time (Flight::scene_at), looping at its end, until the camera is
+// flown by hand.
+struct FlightPlayback {
+  std::optional<Flight> flight;
+  bool playing = false;
+  double time = 0.0;  // s into the flight
+  double duration() const { return flight ? flight->frame_time(flight->frame_count() - 1) : 0.0; }
+};
+
 void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& viewed, Scene& next,
                 bool& time_running, double& time_rate, bool& screenshot, bool& record,
-                const FlightRecorder& recorder, const std::string& message) {
+                const FlightRecorder& recorder, FlightPlayback& playback,
+                const std::string& message) {
   ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.75f);
   ImGui::Begin("thalassa", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
@@ -304,6 +318,15 @@ void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& vie
     drag("rate", time_rate, 0.05, 0.0, 100.0, "x%.2f");
     drag("time", next.time, 0.1, 0.0, 1e12, "%.2f s");
   }
+  if (playback.flight && ImGui::CollapsingHeader("flight", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Checkbox("play", &playback.playing);
+    ImGui::SameLine();
+    double duration = playback.duration();
+    double zero = 0.0;
+    if (ImGui::SliderScalar("flight time", ImGuiDataType_Double, &playback.time, &zero, &duration,
+                            "%.2f s", ImGuiSliderFlags_AlwaysClamp))
+      playback.playing = true;  // scrubbing shows the flight's frame
+  }
   if (ImGui::CollapsingHeader("sea and image")) {
     drag("wind speed", next.ocean.wind_speed, 0.1, 0.0, 60.0, "%.1f m/s");
     drag("wind from", next.ocean.wind_direction, 0.5, -360.0, 360.0, "%.1f deg");
@@ -339,25 +362,45 @@ void add_view_command(CLI::App& app, ViewArgs& args) {
   view->add_flag("--no-panel", args.no_panel, "Start with the panel hidden (H shows it)");
   view->add_option("--screenshot", args.screenshot,
                    "Write the last frame to this EXR (with its PNG and scene JSON) on closing");
+  view->add_option("--flight", args.flight,
+                   "Play this flight file in the window (looping; flying by hand takes over); "
+                   "--set then applies to its base scene");
   view->add_option("--record", args.record,
                    "Record the flight from the first frame into this flight file (JSON), written "
                    "on closing or when C stops it; `thalassa fly` renders it");
   view->footer(
       "Keys: W/S A/D or the arrows fly, R/F or PgUp/PgDn climb, Shift x5; drag to look, wheel to "
       "zoom; I/K J/L move the sun; Space stops the clock; C starts and stops recording a flight "
-      "(thalassa_flight_*.json in the working folder); H hides the panel; P or F12 writes a "
+      "(thalassa_flight_*.json in the working folder); with --flight, flying by hand stops the "
+      "flight; H hides the panel; P or F12 writes a "
       "screenshot (EXR, PNG, scene JSON) in the working folder; Esc or Q quits. docs/viewer.md");
 }
 
 int run_view(const ViewArgs& args) {
   // 1. Everything the user typed is checked before a window opens.
+  if (!args.scene.empty() && !args.flight.empty()) {
+    print_error("view: give a scene or a --flight, not both");
+    return kExitInvalidInput;
+  }
   std::optional<ViewedScene> loaded;
+  FlightPlayback playback;
   try {
     SceneBuilder builder;
-    if (!args.scene.empty()) builder.load_file(args.scene);
-    for (const auto& assignment : args.sets) builder.set(assignment);
+    if (!args.flight.empty()) {
+      // The flight's scene at its start, as a scene file, is the viewer's scene.
+      playback.flight = Flight::load_file(args.flight);
+      for (const auto& assignment : args.sets) playback.flight->set(assignment);
+      std::string merged;
+      playback.flight->scene_at(0.0, &merged);
+      builder.load_text(merged, args.flight);
+      playback.playing = true;
+    } else {
+      if (!args.scene.empty()) builder.load_file(args.scene);
+      for (const auto& assignment : args.sets) builder.set(assignment);
+    }
     loaded.emplace(builder);
-    check_drawable(loaded->scene(), builder.source_of("sky.exr"));
+    check_drawable(loaded->scene(), playback.flight ? playback.flight->scene_source_of("sky.exr")
+                                                    : builder.source_of("sky.exr"));
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;
@@ -485,6 +528,15 @@ int run_view(const ViewArgs& args) {
         next.camera.fov_y =
             std::clamp(next.camera.fov_y * std::exp(-kZoomStep * io.MouseWheel), 0.01, 179.0);
     }
+    if (playback.playing &&
+        (keys.motion.forward != 0.0 || keys.motion.right != 0.0 || keys.motion.climb != 0.0 ||
+         keys.motion.turn_deg != 0.0 || keys.motion.pitch_deg != 0.0)) {
+      playback.playing = false;
+      char text[80];
+      std::snprintf(text, sizeof text, "flight stopped at %.2f s: the camera is yours",
+                    playback.time);
+      message = text;
+    }
     next.camera = move_camera(planet, next.camera, keys.motion, dt);
     if (!viewed.sun_from_utc()) {
       next.sun.zenith = std::clamp(
@@ -497,7 +549,18 @@ int run_view(const ViewArgs& args) {
     bool record = presses.toggle_record;
     if (panel)
       draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
-                 record, recorder, message);
+                 record, recorder, playback, message);
+    if (playback.playing) {
+      // The flight's camera, sun and time at its own time, which the clock moves; the sea's
+      // and the image's keys stay the viewer's.
+      if (time_running && frame > 0) playback.time += dt * time_rate;
+      const double duration = playback.duration();
+      if (playback.time > duration) playback.time = duration > 0.0 ? 0.0 : duration;  // loop
+      const Scene flown = playback.flight->scene_at(playback.time);
+      next.camera = flown.camera;
+      next.sun = flown.sun;
+      next.time = flown.time;
+    }
     try {
       viewed.update(next);
       renderer->set_scene(viewed.scene());

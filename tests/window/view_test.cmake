@@ -1,7 +1,8 @@
 cmake_minimum_required(VERSION 3.25)
 # `thalassa view` under Xvfb: the window's frame is the headless render's, its screenshot's scene
-# file draws the same image again, a flight it records replays from the same first frame, its
-# clock runs unless paused, and bad input or no display stop it before anything is written.
+# file draws the same image again, a flight it records replays from the same first frame, a
+# flight it plays starts from fly's first frame, its clock runs unless paused, and bad input or
+# no display stop it before anything is written.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(SMALL --set image.width=48 --set image.height=32)
@@ -69,6 +70,30 @@ if(NOT replay_png STREQUAL headless_png)
   message(FATAL_ERROR "the recorded flight's first frame differs from the viewer's")
 endif()
 
+# A flight played in the window: at its start, the frame `fly` renders first (the default flight,
+# from 400 km: the space mode); with the clock running, the camera moves along it.
+run_view(played --flight ${DATA}/flights/orbit_to_surface.json --paused --frames 2
+         --screenshot ${WORK}/played.exr)
+execute_process(COMMAND ${THALASSA} fly ${SMALL} --backend osmesa --frames 0 -o ${WORK}/default_fly
+                RESULT_VARIABLE default_fly_status)
+if(NOT played_status EQUAL 0 OR NOT default_fly_status EQUAL 0)
+  message(FATAL_ERROR "view --flight (${played_status}) or fly (${default_fly_status}) failed: "
+                      "${played_error}")
+endif()
+file(SHA256 ${WORK}/played.png played_png)
+file(SHA256 ${WORK}/default_fly/frame_00000.png default_fly_png)
+if(NOT played_png STREQUAL default_fly_png)
+  message(FATAL_ERROR "the played flight's first frame differs from fly's")
+endif()
+run_view(playing --flight ${DATA}/flights/orbit_to_surface.json --frames 3
+         --screenshot ${WORK}/playing.exr)
+file(READ ${WORK}/playing.json playing)
+string(JSON playing_height GET "${playing}" camera height)
+if(NOT playing_status EQUAL 0 OR NOT playing_height LESS 400000)
+  message(FATAL_ERROR "the played flight did not move (${playing_status}): height "
+                      "${playing_height}, ${playing_error}")
+endif()
+
 # The clock runs by default: the scene's time has moved on by the last frame.
 run_view(running --frames 3 --screenshot ${WORK}/running.exr)
 if(NOT running_status EQUAL 0)
@@ -88,6 +113,11 @@ endif()
 run_view(bad_name --frames 1 --screenshot ${WORK}/bad.png)
 if(NOT bad_name_status EQUAL 2 OR NOT bad_name_error MATCHES "--screenshot")
   message(FATAL_ERROR "a screenshot not .exr: status ${bad_name_status}, message: ${bad_name_error}")
+endif()
+run_view(both --flight ${DATA}/flights/orbit_to_surface.json ${DATA}/scenes/wake_demo/wake_50m.json
+         --frames 1 --screenshot ${WORK}/bad.exr)
+if(NOT both_status EQUAL 2 OR NOT both_error MATCHES "not both")
+  message(FATAL_ERROR "a scene and a flight: status ${both_status}, message: ${both_error}")
 endif()
 run_view(bad_record --frames 1 --record ${WORK}/bad.txt)
 if(NOT bad_record_status EQUAL 2 OR NOT bad_record_error MATCHES "--record")
