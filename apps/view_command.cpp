@@ -36,6 +36,16 @@ using Clock = std::chrono::steady_clock;
 // The sun's keys turn it by these rates, degrees per second (a boost multiplies them).
 constexpr double kSunZenithRate = 10.0;
 constexpr double kSunAzimuthRate = 30.0;
+// Where sun.utc places the sun, J / L move that time instead, seconds per second: an hour.
+constexpr double kSunTimeRate = 3600.0;
+constexpr double kSecondsPerDay = 86400.0;
+
+// sun.utc moved by `seconds` (the scene file's form, to the millisecond); unchanged if it does
+// not parse (the scene's checks read it already).
+std::string moved_utc(const std::string& utc, double seconds) {
+  const std::optional<double> at = parse_utc_seconds(utc);
+  return at ? format_utc(*at + seconds) : utc;
+}
 // A mouse drag turns the view by the pixel's angle times this: 1 keeps the point under the
 // cursor under it, as dragging a photograph would.
 constexpr double kDragGain = 1.0;
@@ -309,6 +319,13 @@ void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& vie
     if (viewed.sun_from_utc()) {
       ImGui::Text("sun from sun.utc %s: zenith %.2f, azimuth %.2f deg",
                   viewed.scene().sun.utc->c_str(), next.sun.zenith, next.sun.azimuth);
+      // The time of day, in UTC hours; the date stays.
+      if (const std::optional<double> at = parse_utc_seconds(*next.sun.utc)) {
+        const double day = std::floor(*at / kSecondsPerDay) * kSecondsPerDay;
+        double hours = (*at - day) / 3600.0;
+        drag("UTC hour", hours, 0.01, 0.0, 24.0, "%.3f h");
+        if (hours != (*at - day) / 3600.0) next.sun.utc = format_utc(day + 3600.0 * hours);
+      }
     } else {
       drag("sun zenith", next.sun.zenith, 0.25, 0.0, 180.0, "%.2f deg");
       drag("sun azimuth", next.sun.azimuth, 0.5, -360.0, 360.0, "%.1f deg");
@@ -543,6 +560,9 @@ int run_view(const ViewArgs& args) {
           next.sun.zenith + keys.sun_zenith * kSunZenithRate * keys.motion.boost * dt, 0.0, 180.0);
       next.sun.azimuth = std::remainder(
           next.sun.azimuth + keys.sun_azimuth * kSunAzimuthRate * keys.motion.boost * dt, 360.0);
+    } else if (keys.sun_azimuth != 0.0) {
+      next.sun.utc =
+          moved_utc(*next.sun.utc, keys.sun_azimuth * kSunTimeRate * keys.motion.boost * dt);
     }
     if (time_running) next.time = std::min(next.time + dt * time_rate, 1e12);
     bool screenshot = presses.screenshot;
