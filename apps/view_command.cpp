@@ -133,8 +133,9 @@ std::string timestamped_name(const char* pattern) {
 
 // Records the camera as it is flown into a flight file (docs/flight.md) that `thalassa fly`
 // renders again, headless and at any size: the scene at the recording's first frame as the base
-// scene (its `time` the clock's then), and a keyframe of the camera (and the sun, unless sun.utc
-// places it) at the recording's first and last frames and at most every kRecordInterval between.
+// scene (its `time` the clock's then), and a keyframe of the camera and the sun (its zenith and
+// azimuth, or its sun.utc) at the recording's first and last frames and at most every
+// kRecordInterval between.
 // The flight's time advances with the frames' steps, as the clock does at rate 1: then each
 // replayed frame's waves are the viewer's. (A stopped or faster clock is not recorded; the
 // replay's clock runs at rate 1.)
@@ -201,7 +202,9 @@ class FlightRecorder {
     key["camera"] = {{"lat", c.lat},         {"lon", c.lon},     {"height", c.height},
                      {"heading", c.heading}, {"pitch", c.pitch}, {"roll", c.roll},
                      {"fov_y", c.fov_y}};
-    if (!viewed.sun_from_utc())
+    if (viewed.sun_from_utc())
+      key["sun"] = {{"utc", *scene.sun.utc}};  // J / L move it; the replay places the sun anew
+    else
       key["sun"] = {{"zenith", scene.sun.zenith}, {"azimuth", scene.sun.azimuth}};
     return key;
   }
