@@ -64,6 +64,7 @@ struct FlyArgs {
   std::string stats;
   std::string backend;  // empty: the default headless backend
   bool float_exr = false;
+  std::optional<double> fps;  // frames per second instead of the flight's; its length kept
 };
 
 struct ValidateArgs {

@@ -233,6 +233,8 @@ void add_fly_command(CLI::App& app, FlyArgs& args) {
   fly->add_option("--backend", args.backend, "egl or osmesa (default: egl, else osmesa)")
       ->check(CLI::IsMember({"egl", "osmesa"}));
   fly->add_flag("--float", args.float_exr, "Write 32-bit float EXRs (default: half)");
+  fly->add_option("--fps", args.fps,
+                  "Frames per second instead of the flight's, its length in seconds kept");
 }
 
 int run_fly(const FlyArgs& args) {
@@ -243,6 +245,7 @@ int run_fly(const FlyArgs& args) {
     loaded = args.flight.empty() ? Flight::default_flight() : Flight::load_file(args.flight);
     for (const std::string& assignment : args.sets) loaded->set(assignment);
     if (args.float_exr) loaded->set("image.exr_type=float");
+    if (args.fps) loaded->set_fps(*args.fps);
     check_drawable(loaded->frame_scene(0), loaded->scene_source_of("sky.exr"));
   } catch (const SceneError& error) {
     print_error(error.what());

@@ -50,6 +50,13 @@ std::string number_text(double x) {
   return s;
 }
 
+// The frames of a flight of `duration` seconds at `fps`: at 0, 1/fps, ... up to the duration
+// itself; the epsilon keeps 20 s x 24 fps at 481 frames despite rounding.
+double frames_over(double duration, double fps) {
+  constexpr double kFrameEpsilon = 1e-9;
+  return std::floor(duration * fps + kFrameEpsilon) + 1.0;
+}
+
 [[noreturn]] void fail(std::string_view source, std::string_view key, std::string_view expected,
                        std::string_view got) {
   throw SceneError(detail::input_message(source, key, expected, got));
@@ -370,20 +377,19 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
       fail(source, "frames", "an integer in [1, " + std::to_string(kFlightMaxFrames) + "]",
            describe(n));
     f.frame_count_ = n.get<int>();
+    f.duration_ = f.frame_time(f.frame_count_ - 1);
   } else {
     const double duration =
         doc.contains("duration")
             ? number_in(doc["duration"], source, "duration", 0, kFlightMaxDuration, "s")
             : f.keyframes_.back().time;
-    // Frames at 0, 1/fps, ... up to the duration itself; the epsilon keeps 20 s x 24 fps at
-    // 481 frames despite rounding.
-    constexpr double kFrameEpsilon = 1e-9;
-    const double frames = std::floor(duration * f.fps_ + kFrameEpsilon) + 1.0;
+    const double frames = frames_over(duration, f.fps_);
     if (frames > kFlightMaxFrames)
       fail(source, "duration",
            "at most " + std::to_string(kFlightMaxFrames) + " frames (duration x fps + 1)",
            number_text(frames) + " frames");
     f.frame_count_ = static_cast<int>(frames);
+    f.duration_ = duration;
   }
 
   f.build_channels();
@@ -462,6 +468,19 @@ SceneBuilder Flight::base_builder() const {
       b.load_text(step.text, step.source, step.prefix);
   }
   return b;
+}
+
+void Flight::set_fps(double fps) {
+  if (!std::isfinite(fps) || !(fps > 0.0) || fps > kFlightMaxFps)
+    throw SceneError("--fps: expected a number in (0, " + number_text(kFlightMaxFps) +
+                     "] (frames per second), got " + number_text(fps));
+  const double frames = frames_over(duration_, fps);
+  if (frames > kFlightMaxFrames)
+    throw SceneError("--fps: expected at most " + std::to_string(kFlightMaxFrames) +
+                     " frames (duration x fps + 1), got " + number_text(frames) + " frames");
+  fps_ = fps;
+  frame_count_ = static_cast<int>(frames);
+  build_channels();  // the ends' easing depends on the last frame's time
 }
 
 void Flight::set(std::string_view assignment) {

@@ -1228,6 +1228,22 @@ TEST_F(Cli, FlyFramesRendersOnlyThatSlice) {
                                                frame_file(2, ".exr"), frame_file(2, ".png")}));
 }
 
+// --fps renders the flight at another rate, its length kept: the 4-fps, 1 s flight at 8 fps
+// ends at frame 8, the last keyframe's camera; a bad rate exits with 2 before anything is written.
+TEST_F(Cli, FlyFpsKeepsTheFlightsLength) {
+  write("flight.json", kShortFlight);
+  const Result r = run("fly flight.json -o out --fps 8 --frames 8:8 " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  auto meta = metadata_of(dir_ / "out" / frame_file(8, ".exr"));
+  EXPECT_EQ(meta["thalassa:flight"], "flight.json frame=8 t=1 fps=8");
+  EXPECT_EQ(nlohmann::json::parse(meta["thalassa:scene"])["camera"]["height"], 2.0);
+  expect_invalid(run("fly flight.json -o bad --fps 0"),
+                 {"--fps: expected a number in (0, 1000] (frames per second), got 0"});
+  expect_invalid(run("fly flight.json -o bad --fps 8 --frames 9:9"),
+                 {"--frames 9:9: expected A:B with 0 <= A <= B <= 8"});
+  EXPECT_FALSE(fs::exists(dir_ / "bad"));
+}
+
 TEST_F(Cli, FlyRerunSkipsFramesAlreadyWritten) {
   write("flight.json", kShortFlight);
   ASSERT_EQ(run("fly flight.json -o out --frames 0:1 " + kSmall).status, 0);

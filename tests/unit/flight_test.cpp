@@ -368,6 +368,41 @@ TEST(Flight, FrameCountFromDurationOrFrames) {
   EXPECT_DOUBLE_EQ(f.frame_time(480), 20.0);
 }
 
+// `fly --fps`: another frame rate keeps the flight's length and its path. The default flight at
+// 60 fps has 1201 frames over its 20 s, and its frames at the same times are the 24-fps ones to
+// the bit; a flight given by `frames` keeps (frames - 1) / fps; bad rates change nothing.
+TEST(Flight, SetFpsKeepsTheLengthAndThePath) {
+  Flight f = Flight::default_flight();
+  const Flight at24 = Flight::default_flight();
+  f.set_fps(60.0);
+  EXPECT_EQ(f.frame_count(), 1201);
+  EXPECT_DOUBLE_EQ(f.frame_time(1200), 20.0);
+  for (const auto& [frame60, frame24] : {std::pair{0, 0}, {150, 60}, {600, 240}, {1200, 480}}) {
+    const Scene a = f.frame_scene(frame60), b = at24.frame_scene(frame24);
+    EXPECT_EQ(a.camera.height, b.camera.height) << frame60;
+    EXPECT_EQ(a.camera.pitch, b.camera.pitch) << frame60;
+    EXPECT_EQ(a.time, b.time) << frame60;
+  }
+  f.set_fps(2.5);
+  EXPECT_EQ(f.frame_count(), 51);
+  Flight counted = Flight::parse(
+      flight_text(R"([{"time": 0}, {"time": 1}])", R"("fps": 10, "frames": 11)"), "f");
+  counted.set_fps(20.0);
+  EXPECT_EQ(counted.frame_count(), 21);
+  EXPECT_DOUBLE_EQ(counted.frame_time(20), 1.0);
+  for (const double bad : {0.0, -24.0, 1001.0, double(NAN), double(INFINITY)}) {
+    const std::string message = error_of([&] { counted.set_fps(bad); });
+    EXPECT_NE(message.find("--fps: expected a number in (0, 1000]"), std::string::npos) << message;
+  }
+  Flight long_flight =
+      Flight::parse(flight_text(R"([{"time": 0}, {"time": 100000}])", R"("fps": 1)"), "f");
+  EXPECT_NE(error_of([&] { long_flight.set_fps(1000.0); }).find("at most 10000000 frames"),
+            std::string::npos);
+  EXPECT_EQ(counted.frame_count(), 21);
+  EXPECT_EQ(counted.fps(), 20.0);
+  EXPECT_EQ(long_flight.frame_count(), 100001);
+}
+
 TEST(Flight, UtcTimesAreInterpolatedLinearlyAndPlaceTheSun) {
   const Flight f =
       Flight::parse(flight_text(R"([{"time": 0, "sun": {"utc": "2026-06-21T18:00:00Z"}},

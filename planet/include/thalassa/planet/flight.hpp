@@ -99,6 +99,12 @@ class Flight {
   // the sun). Checked at once: a failed call changes nothing.
   void set(std::string_view assignment);
 
+  // Renders the flight at another frame rate, its length in seconds kept (its `duration`; for a
+  // flight given by `frames`, (frames - 1) / fps): frames at 0, 1/fps, ... up to that length.
+  // Throws SceneError ("--fps: expected ...") for fps not in (0, kFlightMaxFps] or more than
+  // kFlightMaxFrames frames; a failed call changes nothing.
+  void set_fps(double fps);
+
   const std::string& source() const { return source_; }
   double fps() const { return fps_; }
   int frame_count() const { return frame_count_; }
@@ -136,6 +142,7 @@ class Flight {
   std::vector<Step> steps_;
   double fps_ = 24.0;
   int frame_count_ = 1;
+  double duration_ = 0.0;  // s: the flight's length, which set_fps keeps
   std::vector<FlightKeyframe> keyframes_;
   std::vector<std::string> animated_;
   double base_time_ = 0.0;  // the base scene's `time`, seconds
