@@ -434,8 +434,13 @@ int run_view(const ViewArgs& args) {
     }
   }
   if (!args.record.empty()) {
-    if (const std::string problem = check_output("--record", args.record, ".json");
-        !problem.empty()) {
+    // The screenshot writes its scene file beside its EXR: the flight must not be that file.
+    const std::string screenshot_json =
+        args.screenshot.empty() ? ""
+                                : args.screenshot.substr(0, args.screenshot.size() - 4) + ".json";
+    std::string problem = check_output("--record", args.record, ".json");
+    if (problem.empty()) problem = check_distinct("--record", args.record, {screenshot_json});
+    if (!problem.empty()) {
       print_error(problem);
       return kExitInvalidInput;
     }
