@@ -40,12 +40,6 @@ constexpr double kSunAzimuthRate = 30.0;
 constexpr double kSunTimeRate = 3600.0;
 constexpr double kSecondsPerDay = 86400.0;
 
-// sun.utc moved by `seconds` (the scene file's form, to the millisecond); unchanged if it does
-// not parse (the scene's checks read it already).
-std::string moved_utc(const std::string& utc, double seconds) {
-  const std::optional<double> at = parse_utc_seconds(utc);
-  return at ? format_utc(*at + seconds) : utc;
-}
 // A mouse drag turns the view by the pixel's angle times this: 1 keeps the point under the
 // cursor under it, as dragging a photograph would.
 constexpr double kDragGain = 1.0;
@@ -59,9 +53,16 @@ constexpr double kBoost = 5.0;  // a held Shift
 // follow a hand-flown path closely (docs/flight.md's splines pass through every key), and a
 // flight file's 100000 keys last 55 minutes.
 constexpr double kRecordInterval = 1.0 / 30.0;
-// The recorded flight's frames per second (a `fly --set`-free default; fly renders it at any
-// size).
+// The recorded flight's frames per second (`fly --fps` renders it at another rate, `--set` at
+// another size).
 constexpr double kRecordFps = 30.0;
+
+// sun.utc moved by `seconds` (the scene file's form, to the millisecond); unchanged if it does
+// not parse (the scene's checks read it already).
+std::string moved_utc(const std::string& utc, double seconds) {
+  const std::optional<double> at = parse_utc_seconds(utc);
+  return at ? format_utc(*at + seconds) : utc;
+}
 
 // "%.17g": a double written so that it reads back the same.
 std::string exact(double value) {
@@ -606,19 +607,16 @@ int run_view(const ViewArgs& args) {
     glfwSwapBuffers(window);
     // The recording follows the scenes drawn: it starts at this frame and stops after it.
     const bool start_now = std::exchange(record_from_start, false);
-    if (record && recorder.active()) {
-      recorder.add(dt, viewed);
-      message = recorder.finish();
-      std::fprintf(stderr, "thalassa: %s\n", message.c_str());
-    } else if (record || start_now) {
+    const bool stop = record && recorder.active();
+    if (!recorder.active() && (record || start_now))
       recorder.start(
           start_now ? args.record : timestamped_name("thalassa_flight_%Y%m%d_%H%M%S.json"), viewed);
+    if (recorder.active()) {
       recorder.add(dt, viewed);
-    } else if (recorder.active()) {
-      recorder.add(dt, viewed);
-      if (recorder.full()) {
-        message = recorder.finish();
-        std::fprintf(stderr, "thalassa: the flight file is full: %s\n", message.c_str());
+      if (stop || recorder.full()) {
+        const std::string why = stop ? "" : "the flight file is full: ";
+        message = why + recorder.finish();
+        std::fprintf(stderr, "thalassa: %s\n", message.c_str());
       }
     }
     if (screenshot) {
