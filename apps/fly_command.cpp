@@ -105,8 +105,9 @@ double median(std::vector<double> values) {
 
 struct FrameRecord {
   int frame = 0;
-  double time = 0.0;    // s
-  double height = 0.0;  // m
+  double time = 0.0;        // s into the flight
+  double scene_time = 0.0;  // s: the frame's scene `time` (the waves' clock)
+  double height = 0.0;      // m
   bool skipped = false;
   RenderStats stats;
   // Wall-clock: creating the Renderer (the first frame rendered) or setting the frame's scene.
@@ -161,6 +162,7 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
     nlohmann::ordered_json f;
     f["frame"] = r.frame;
     f["time"] = r.time;
+    f["scene_time"] = r.scene_time;
     f["camera_height"] = r.height;
     f["skipped"] = r.skipped;
     if (!r.skipped) {
@@ -315,6 +317,7 @@ int run_fly(const FlyArgs& args) {
     FrameRecord record;
     record.frame = frame;
     record.time = flight.frame_time(frame);
+    record.scene_time = scene.time;
     record.height = scene.camera.height;
     if (already_written(exr, png, merged)) {
       record.skipped = true;

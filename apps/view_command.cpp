@@ -56,6 +56,11 @@ constexpr double kRecordInterval = 1.0 / 30.0;
 // The recorded flight's frames per second (`fly --fps` renders it at another rate, `--set` at
 // another size).
 constexpr double kRecordFps = 30.0;
+// A recording's scene times that stay this close to the base scene's time plus the flight's, s,
+// are those of a clock that ran at rate 1 all along (they differ by rounding: the two sums add
+// the same steps in another order), and are left out of the file: its waves then run with the
+// flight as in any flight file. A millisecond of the sea's motion is not visible.
+constexpr double kRecordClockTolerance = 1e-3;
 
 // sun.utc moved by `seconds` (the scene file's form, to the millisecond); unchanged if it does
 // not parse (the scene's checks read it already).
@@ -134,12 +139,14 @@ std::string timestamped_name(const char* pattern) {
 
 // Records the camera as it is flown into a flight file (docs/flight.md) that `thalassa fly`
 // renders again, headless and at any size: the scene at the recording's first frame as the base
-// scene (its `time` the clock's then), and a keyframe of the camera and the sun (its zenith and
-// azimuth, or its sun.utc) at the recording's first and last frames and at most every
-// kRecordInterval between.
-// The flight's time advances with the frames' steps, as the clock does at rate 1: then each
-// replayed frame's waves are the viewer's. (A stopped or faster clock is not recorded; the
-// replay's clock runs at rate 1.)
+// scene (its `time` the clock's then), and a keyframe of the camera, the sun (its zenith and
+// azimuth, or its sun.utc), the scene's time and the exposure at the recording's first and last
+// frames and at most every kRecordInterval between.
+// The flight's time advances with the frames' steps. The scene's time (the clock, which may have
+// been stopped or run faster) is kept as each keyframe's scene_time, and the exposure as its
+// image.exposure, unless they are what the flight would give without them (a clock at rate 1
+// throughout, an exposure never changed): then each replayed frame's waves and tones are the
+// viewer's. The wind is not keyframed (a flight cannot change its wave set).
 class FlightRecorder {
  public:
   bool active() const { return !path_.empty(); }
@@ -151,6 +158,8 @@ class FlightRecorder {
   void start(std::string path, const ViewedScene& viewed) {
     path_ = std::move(path);
     base_ = nlohmann::ordered_json::parse(viewed.merged_json());
+    base_time_ = viewed.scene().time;
+    base_exposure_ = viewed.scene().image.exposure;
     keys_ = nlohmann::ordered_json::array();
     time_ = 0.0;
     last_key_ = -kRecordInterval;
@@ -173,6 +182,7 @@ class FlightRecorder {
   std::string finish() {
     if (pending_ && time_ > last_key_) keys_.push_back(std::move(*pending_));
     pending_.reset();
+    drop_unchanged();
     nlohmann::ordered_json flight;
     char summary[96];
     std::snprintf(summary, sizeof summary, "%zu keyframes over %.2f s", keys_.size(), time_);
@@ -200,6 +210,7 @@ class FlightRecorder {
     const CameraSettings& c = scene.camera;
     nlohmann::ordered_json key;
     key["time"] = time_;
+    key["scene_time"] = scene.time;
     key["camera"] = {{"lat", c.lat},         {"lon", c.lon},     {"height", c.height},
                      {"heading", c.heading}, {"pitch", c.pitch}, {"roll", c.roll},
                      {"fov_y", c.fov_y}};
@@ -207,7 +218,24 @@ class FlightRecorder {
       key["sun"] = {{"utc", *scene.sun.utc}};  // J / L move it; the replay places the sun anew
     else
       key["sun"] = {{"zenith", scene.sun.zenith}, {"azimuth", scene.sun.azimuth}};
+    key["image"] = {{"exposure", scene.image.exposure}};
     return key;
+  }
+
+  // Leaves out the scene times of a clock that ran at rate 1 throughout, and the exposure when
+  // it never changed (the flight gives both without them).
+  void drop_unchanged() {
+    bool steady_clock = true, same_exposure = true;
+    for (const auto& key : keys_) {
+      const double flight_time = key["time"].get<double>();
+      steady_clock = steady_clock && std::fabs(key["scene_time"].get<double>() -
+                                               (base_time_ + flight_time)) <= kRecordClockTolerance;
+      same_exposure = same_exposure && key["image"]["exposure"].get<double>() == base_exposure_;
+    }
+    for (auto& key : keys_) {
+      if (steady_clock) key.erase("scene_time");
+      if (same_exposure) key.erase("image");
+    }
   }
 
   std::string path_;  // empty: not recording
@@ -215,6 +243,8 @@ class FlightRecorder {
   std::optional<nlohmann::ordered_json> pending_;
   double time_ = 0.0;      // s since the recording's first frame
   double last_key_ = 0.0;  // s: the last keyframe kept
+  double base_time_ = 0.0;      // s: the scene's time at the first frame
+  double base_exposure_ = 0.0;  // the exposure at the first frame
 };
 
 // What the keys held this frame ask of the camera (planet/camera_controls.hpp) and the sun.
@@ -287,6 +317,12 @@ struct FlightPlayback {
   bool playing = false;
   double time = 0.0;  // s into the flight
   double duration() const { return flight ? flight->frame_time(flight->frame_count() - 1) : 0.0; }
+  // Whether its keyframes give image.exposure, which then follows the flight.
+  bool animates_exposure() const {
+    if (!flight) return false;
+    const auto& keys = flight->animated_keys();
+    return std::find(keys.begin(), keys.end(), "image.exposure") != keys.end();
+  }
 };
 
 void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& viewed, Scene& next,
@@ -589,6 +625,7 @@ int run_view(const ViewArgs& args) {
       next.camera = flown.camera;
       next.sun = flown.sun;
       next.time = flown.time;
+      if (playback.animates_exposure()) next.image.exposure = flown.image.exposure;
     }
     try {
       viewed.update(next);

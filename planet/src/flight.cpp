@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <utility>
@@ -81,6 +82,7 @@ double number_in(const json& v, std::string_view source, std::string_view key, d
 enum class ChannelKind {
   Linear,     // interpolated as is, clamped to [lo, hi]
   LogHeight,  // interpolated as log(height + kFlightHeightOffset)
+  Log,        // interpolated as log(x), x > 0: equal times cover equal ratios
   Angle,      // interpolated unwrapped (the short way), wrapped into [lo, lo + 360) or (lo, hi]
 };
 
@@ -95,7 +97,7 @@ struct Channel {
 
 constexpr double kFullTurn = 360.0;  // degrees
 
-// The numeric channels; sun.utc is handled apart (linear in time).
+// The numeric channels; sun.utc and the scene's time are handled apart (linear in time).
 const std::vector<Channel>& channels() {
   static const std::vector<Channel> table = {
       {"camera", "lat", &FlightValues::lat, ChannelKind::Linear, -90, 90, false},
@@ -108,6 +110,10 @@ const std::vector<Channel>& channels() {
       {"camera", "fov_y", &FlightValues::fov_y, ChannelKind::Linear, 0.01, 179, false},
       {"sun", "zenith", &FlightValues::sun_zenith, ChannelKind::Linear, 0, 180, false},
       {"sun", "azimuth", &FlightValues::sun_azimuth, ChannelKind::Angle, 0, 360, false},
+      // The exposure in its logarithm: a change by a factor 100 over 2 s passes 10 at 1 s, as
+      // a camera's exposure steps in stops. The scene's range is (0, 1e6].
+      {"image", "exposure", &FlightValues::exposure, ChannelKind::Log,
+       std::numeric_limits<double>::min(), 1e6, false},
   };
   return table;
 }
@@ -126,7 +132,14 @@ double wrap_angle(double x, double lo, bool upper_closed) {
 
 // The value of channel `c` in interpolation space.
 double to_space(const Channel& c, double x) {
-  return c.kind == ChannelKind::LogHeight ? std::log(x + kFlightHeightOffset) : x;
+  switch (c.kind) {
+    case ChannelKind::LogHeight:
+      return std::log(x + kFlightHeightOffset);
+    case ChannelKind::Log:
+      return std::log(x);
+    default:
+      return x;
+  }
 }
 
 // Back from interpolation space into the channel's range.
@@ -136,6 +149,8 @@ double from_space(const Channel& c, double y) {
       return std::clamp(y, c.lo, c.hi);
     case ChannelKind::LogHeight:
       return std::clamp(std::exp(y) - kFlightHeightOffset, c.lo, c.hi);
+    case ChannelKind::Log:
+      return std::clamp(std::exp(y), c.lo, c.hi);
     case ChannelKind::Angle:
       return wrap_angle(y, c.lo, c.upper_closed);
   }
@@ -174,15 +189,25 @@ void only_known(const json& object, const std::vector<std::string_view>& allowed
 FlightKeyframe parse_keyframe(const json& k, std::string_view source, const std::string& at) {
   if (!k.is_object())
     fail(source, at, "an object {\"time\": ..., \"camera\": {...}, \"sun\": {...}}", describe(k));
-  only_known(k, {"time", "camera", "sun"}, source, at + ".");
+  only_known(k, {"time", "scene_time", "camera", "sun", "image"}, source, at + ".");
   FlightKeyframe keyframe;
   if (!k.contains("time")) fail(source, at + ".time", "a number (s)", "no time");
   keyframe.time = number_in(k["time"], source, at + ".time", 0, kFlightMaxDuration, "s");
-  std::vector<std::string_view> camera_keys, sun_keys;
+  if (k.contains("scene_time")) {
+    // The scene's `time` at this keyframe, in the scene's range.
+    // (The prefix ".scene_" makes the message's key "keyframes[i].scene_time".)
+    check_scene_value("time", dump(k["scene_time"]), source, at + ".scene_");
+    keyframe.values.scene_time = k["scene_time"].get<double>();
+  }
+  std::vector<std::string_view> camera_keys, sun_keys, image_keys;
   for (const Channel& c : channels())
-    (c.section == "camera" ? camera_keys : sun_keys).push_back(c.name);
+    (c.section == "camera" ? camera_keys
+     : c.section == "sun"  ? sun_keys
+                           : image_keys)
+        .push_back(c.name);
   sun_keys.push_back("utc");
-  for (const auto& [section, allowed] : {std::pair{"camera", camera_keys}, {"sun", sun_keys}}) {
+  for (const auto& [section, allowed] :
+       {std::pair{"camera", camera_keys}, {"sun", sun_keys}, {"image", image_keys}}) {
     if (!k.contains(section)) continue;
     const json& object = k[section];
     const std::string prefix = at + "." + section + ".";
@@ -409,7 +434,16 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
          utc_animated ? "sun.utc" : "sun.zenith/sun.azimuth");
   }
   f.base_time_ = base.build().time;
-  f.scene_at(0.0);
+  if (!f.clock_times_.empty() && f.clock_values_.front() < f.clock_times_.front()) {
+    std::size_t first = 0;
+    while (!f.keyframes_[first].values.scene_time) ++first;
+    fail(source, "keyframes[" + std::to_string(first) + "].scene_time",
+         "at least its keyframe's time (" + number_text(f.clock_times_.front()) +
+             " s): before its first key the scene's time runs at rate 1, and may not be negative "
+             "at the flight's start",
+         number_text(f.clock_values_.front()));
+  }
+  f.check_ends();
   return f;
 }
 
@@ -457,6 +491,19 @@ void Flight::build_channels() {
     utc_seconds_.push_back(*parse_utc_seconds(*k.values.sun_utc));  // checked when parsed
   }
   if (!utc_times_.empty()) animated_.push_back("sun.utc");
+  clock_times_.clear();
+  clock_values_.clear();
+  for (const FlightKeyframe& k : keyframes_) {
+    if (!k.values.scene_time) continue;
+    clock_times_.push_back(k.time);
+    clock_values_.push_back(*k.values.scene_time);
+  }
+  if (!clock_times_.empty()) animated_.push_back("time");
+}
+
+void Flight::check_ends() const {
+  scene_at(0.0);
+  scene_at(frame_time(frame_count_ - 1));
 }
 
 SceneBuilder Flight::base_builder() const {
@@ -478,9 +525,19 @@ void Flight::set_fps(double fps) {
   if (frames > kFlightMaxFrames)
     throw SceneError("--fps: expected at most " + std::to_string(kFlightMaxFrames) +
                      " frames (duration x fps + 1), got " + number_text(frames) + " frames");
+  const double old_fps = fps_;
+  const int old_count = frame_count_;
   fps_ = fps;
   frame_count_ = static_cast<int>(frames);
   build_channels();  // the ends' easing depends on the last frame's time
+  try {
+    check_ends();  // a later last frame may take the scene's time past its range
+  } catch (...) {
+    fps_ = old_fps;
+    frame_count_ = old_count;
+    build_channels();
+    throw;
+  }
 }
 
 void Flight::set(std::string_view assignment) {
@@ -501,7 +558,7 @@ void Flight::set(std::string_view assignment) {
   steps_.push_back({"", "--set", "", std::string(assignment)});
   try {
     base_time_ = base_builder().build().time;
-    scene_at(0.0);
+    check_ends();
   } catch (...) {
     steps_.pop_back();
     base_time_ = base_builder().build().time;
@@ -527,7 +584,7 @@ FlightValues Flight::sample(double t) const {
         value = wrap_angle(value, channel.lo, channel.upper_closed);
     } else {
       value = from_space(channel, splines_[c](t));
-      if (channel.kind == ChannelKind::LogHeight) {
+      if (channel.kind == ChannelKind::LogHeight || channel.kind == ChannelKind::Log) {
         // The neighbouring keys bound it exactly (the spline piece does, up to exp's rounding).
         const std::size_t i = static_cast<std::size_t>(hit - times.begin());
         const double a = key_values_[c][i - 1], b = key_values_[c][i];
@@ -557,6 +614,25 @@ FlightValues Flight::sample(double t) const {
       out.sun_utc = format_utc(utc_seconds_[i - 1] + s * (utc_seconds_[i] - utc_seconds_[i - 1]));
     }
   }
+  if (!clock_times_.empty()) {
+    // Linear between keys (a stopped or steady clock kept exactly), rate 1 beyond them, the
+    // keys' own values at the keys.
+    const std::vector<double>&tk = clock_times_, &vk = clock_values_;
+    const auto hit = std::lower_bound(tk.begin(), tk.end(), t);
+    if (t <= tk.front()) {
+      out.scene_time = vk.front() - (tk.front() - t);
+    } else if (t >= tk.back()) {
+      out.scene_time = vk.back() + (t - tk.back());
+    } else {
+      const std::size_t i = static_cast<std::size_t>(hit - tk.begin());
+      if (tk[i] == t) {
+        out.scene_time = vk[i];
+      } else {
+        const double s = (t - tk[i - 1]) / (tk[i] - tk[i - 1]);
+        out.scene_time = vk[i - 1] + s * (vk[i] - vk[i - 1]);
+      }
+    }
+  }
   return out;
 }
 
@@ -567,7 +643,7 @@ Scene Flight::scene_at(double t, std::string* merged_json) const {
   for (const Channel& c : channels())
     if (const auto& value = v.*c.member) doc[std::string(c.section)][std::string(c.name)] = *value;
   if (v.sun_utc) doc["sun"]["utc"] = *v.sun_utc;
-  doc["time"] = base_time_ + t;
+  doc["time"] = v.scene_time ? *v.scene_time : base_time_ + t;
   b.load_text(doc.dump(), source_ + " at t=" + number_text(t) + " s");
   Scene scene = b.build();
   if (merged_json) *merged_json = b.merged_json();

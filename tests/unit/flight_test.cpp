@@ -432,6 +432,92 @@ TEST(Flight, UtcTextRoundTrips) {
   EXPECT_FALSE(parse_utc_seconds("2026-02-30T00:00:00Z"));
 }
 
+TEST(Flight, SceneTimeKeysStopOrSpeedTheClockAndRunItAtRateOneBeyond) {
+  // From 2 to 4 s the clock stopped at 10 s, from 4 to 6 s at rate 3: the waves' time.
+  const Flight f = Flight::parse(flight_text(R"([{"time": 2, "scene_time": 10},
+                      {"time": 4, "scene_time": 10}, {"time": 6, "scene_time": 16}])",
+                                             R"("scene": {"time": 500}, "duration": 8)"),
+                                 "f.json");
+  const std::vector<std::string>& animated = f.animated_keys();
+  EXPECT_NE(std::find(animated.begin(), animated.end(), "time"), animated.end());
+  EXPECT_EQ(f.frame_count(), 193);
+  // Rate 1 before the first key and after the last; the base scene's 500 s plays no part.
+  EXPECT_EQ(*f.sample(0.0).scene_time, 8.0);
+  EXPECT_EQ(f.scene_at(1.5).time, 9.5);
+  EXPECT_EQ(f.scene_at(2.0).time, 10.0);
+  for (double t = 2.0; t <= 4.0; t += 0.125) EXPECT_EQ(f.scene_at(t).time, 10.0) << t;
+  // Three times the flight's rate, to rounding: the clock's steps between frames are equal.
+  for (int frame = 4 * 24; frame < 6 * 24; ++frame) {
+    const double step = f.frame_scene(frame + 1).time - f.frame_scene(frame).time;
+    EXPECT_NEAR(step, 3.0 / 24.0, 1e-12) << frame;
+  }
+  EXPECT_EQ(f.scene_at(5.0).time, 13.0);
+  EXPECT_EQ(f.scene_at(6.0).time, 16.0);
+  EXPECT_EQ(f.scene_at(8.0).time, 18.0);
+  EXPECT_EQ(f.frame_scene(f.frame_count() - 1).time, 18.0);
+  // A flight without scene_time runs from the base scene's time, as before.
+  const Flight plain = Flight::parse(
+      flight_text(R"([{"time": 0}, {"time": 2}])", R"("scene": {"time": 500})"), "f.json");
+  EXPECT_FALSE(plain.sample(1.0).scene_time);
+  EXPECT_EQ(plain.scene_at(1.5).time, 501.5);
+  // The clock may run backwards (a rewind), and stays exact at every key.
+  const Flight rewind = Flight::parse(
+      flight_text(R"([{"time": 0, "scene_time": 100}, {"time": 10, "scene_time": 90}])"), "f.json");
+  EXPECT_EQ(rewind.scene_at(5.0).time, 95.0);
+  EXPECT_EQ(rewind.scene_at(10.0).time, 90.0);
+  // The keyframes own the scene's time: --set time=... is refused, and changes nothing.
+  Flight copy = f;
+  EXPECT_EQ(error_of([&] { copy.set("time=3"); }),
+            "--set: time: expected a key the flight's keyframes do not animate (f.json gives time "
+            "in its keyframes), got an override of it");
+  EXPECT_EQ(copy.scene_at(0.0).time, 8.0);
+  // A frame rate that takes the last frame's clock out of the scene's range is refused.
+  // (At 1 fps the 0.5 s flight is one frame, at 0 s; at 24 fps its last is at 0.5 s.)
+  Flight late = Flight::parse(
+      flight_text(R"([{"time": 0, "scene_time": 999999999999.75}, {"time": 0.5}])", R"("fps": 1)"),
+      "f.json");
+  EXPECT_NE(error_of([&] { late.set_fps(24.0); }).find("time: expected a number in [0, 1e12]"),
+            std::string::npos);
+  EXPECT_EQ(late.fps(), 1.0);  // unchanged
+  EXPECT_EQ(late.frame_count(), 1);
+  EXPECT_EQ(late.frame_scene(0).time, 999999999999.75);
+}
+
+TEST(Flight, ExposureIsInterpolatedInItsLogarithm) {
+  // A factor 100 over 2 s, between two keys: the straight line in log exposure, a factor 10 a
+  // second, as a camera's exposure steps in stops.
+  const Flight f = Flight::parse(flight_text(R"([{"time": 0, "image": {"exposure": 1}},
+                      {"time": 2, "image": {"exposure": 100}}])",
+                                             R"("scene": {"image": {"exposure": 7}})"),
+                                 "f.json");
+  EXPECT_EQ(f.scene_at(0.0).image.exposure, 1.0);
+  EXPECT_NEAR(f.scene_at(1.0).image.exposure, 10.0, 1e-12);
+  EXPECT_NEAR(f.scene_at(0.5).image.exposure, std::sqrt(10.0), 1e-12);
+  EXPECT_EQ(f.scene_at(2.0).image.exposure, 100.0);
+  EXPECT_EQ(f.scene_at(3.0).image.exposure, 100.0);  // held
+  // Three keys: monotone, never outside its neighbouring keys, C1 at the inner key.
+  const Flight g = Flight::parse(flight_text(R"([{"time": 0, "image": {"exposure": 0.5}},
+                      {"time": 1, "image": {"exposure": 40}}, {"time": 3, "image": {"exposure": 50}}])"),
+                                 "f.json");
+  double previous = 0.0;
+  for (int i = 0; i <= 300; ++i) {
+    const double e = g.scene_at(i / 100.0).image.exposure;
+    EXPECT_GE(e, previous) << i;
+    EXPECT_LE(e, i <= 100 ? 40.0 : 50.0) << i;
+    EXPECT_GE(e, i <= 100 ? 0.5 : 40.0) << i;
+    previous = e;
+  }
+  const double h = 1e-6;
+  const double left = std::log(g.scene_at(1.0).image.exposure / g.scene_at(1.0 - h).image.exposure);
+  const double right =
+      std::log(g.scene_at(1.0 + h).image.exposure / g.scene_at(1.0).image.exposure);
+  EXPECT_NEAR(left / h, right / h, 1e-3 * std::fabs(left / h));
+  const Flight none = Flight::parse(
+      flight_text(R"([{"time": 0}, {"time": 1}])", R"("scene": {"image": {"exposure": 7}})"),
+      "f.json");
+  EXPECT_EQ(none.scene_at(0.5).image.exposure, 7.0);
+}
+
 // --- overrides ---------------------------------------------------------------------------------
 
 TEST(Flight, SetOverridesTheBaseSceneButNotAnimatedKeys) {
@@ -490,8 +576,22 @@ TEST(FlightErrors, NameTheFileTheKeyPathAndTheExpectation) {
       {flight_text(R"([{"camera": {"lat": 1}}])"),
        "f.json: keyframes[0].time: expected a number (s), got no time"},
       {flight_text(R"([{"time": 0, "speed": 3}])"),
-       "f.json: keyframes[0].speed: expected a known key (time, camera, sun; see docs/flight.md), "
-       "got an unknown key"},
+       "f.json: keyframes[0].speed: expected a known key (time, scene_time, camera, sun, image; "
+       "see docs/flight.md), got an unknown key"},
+      {flight_text(R"([{"time": 0, "image": {"width": 64}}])"),
+       "f.json: keyframes[0].image.width: expected a known key (exposure; see docs/flight.md), got "
+       "an unknown key"},
+      {flight_text(R"([{"time": 0, "image": {"exposure": 0}}])"),
+       "f.json: keyframes[0].image.exposure: expected a number in (0, 1e6] (1/(W m^-2 sr^-1 "
+       "nm^-1)), got 0"},
+      {flight_text(R"([{"time": 0, "scene_time": -1}])"),
+       "f.json: keyframes[0].scene_time: expected a number in [0, 1e12] (s), got -1"},
+      {flight_text(R"([{"time": 0}, {"time": 4, "scene_time": 3}])"),
+       "f.json: keyframes[1].scene_time: expected at least its keyframe's time (4 s): before its "
+       "first key the scene's time runs at rate 1, and may not be negative at the flight's "
+       "start, got 3"},
+      {flight_text(R"([{"time": 0, "scene_time": 1e12}, {"time": 1}])"),
+       "f.json at t=1 s: time: expected a number in [0, 1e12] (s), got 1000000000001.0"},
       {flight_text(R"([{"time": 0, "camera": 3}])"),
        "f.json: keyframes[0].camera: expected an object of camera keys, got 3"},
       {flight_text(R"([3])"),

@@ -69,6 +69,41 @@ file(SHA256 ${WORK}/replay/frame_00000.png replay_png)
 if(NOT replay_png STREQUAL headless_png)
   message(FATAL_ERROR "the recorded flight's first frame differs from the viewer's")
 endif()
+# The clock was stopped: every keyframe keeps the scene's time of the first frame (scene_time),
+# the exposure never changed and is left out, and every frame `fly` renders is the viewer's
+# (camera, sun and waves still; without scene_time the replay's waves would run).
+string(JSON base_time GET "${flight}" scene time)
+string(JSON first_clock ERROR_VARIABLE first_clock_error GET "${flight}" keyframes 0 scene_time)
+string(JSON last_clock ERROR_VARIABLE last_clock_error GET "${flight}" keyframes ${last_key}
+       scene_time)
+string(JSON image ERROR_VARIABLE no_image GET "${flight}" keyframes 0 image)
+if(first_clock_error OR last_clock_error OR NOT first_clock EQUAL base_time
+   OR NOT last_clock EQUAL base_time OR NOT no_image)
+  message(FATAL_ERROR "the stopped clock's flight: scene_time ${first_clock} to ${last_clock} "
+                      "(the scene's ${base_time}; ${first_clock_error}${last_clock_error}), "
+                      "image ${image}")
+endif()
+# (At 200 frames a second: the four frames may last a few tens of ms, 0.75 s at most.)
+execute_process(COMMAND ${THALASSA} fly ${WORK}/flight.json --backend osmesa --fps 200
+                        -o ${WORK}/replay_all --stats ${WORK}/replay_all.json
+                RESULT_VARIABLE replay_all_status ERROR_VARIABLE replay_all_error)
+file(GLOB replayed ${WORK}/replay_all/frame_*.png)
+list(LENGTH replayed replayed_count)
+if(NOT replay_all_status EQUAL 0 OR replayed_count EQUAL 0)
+  message(FATAL_ERROR "fly of the whole recorded flight failed: ${replay_all_error}")
+endif()
+file(READ ${WORK}/replay_all.json replay_stats)
+math(EXPR last_frame "${replayed_count} - 1")
+string(JSON last_scene_time GET "${replay_stats}" frames ${last_frame} scene_time)
+if(NOT last_scene_time EQUAL base_time)
+  message(FATAL_ERROR "the stopped clock's last frame has the scene time ${last_scene_time}")
+endif()
+foreach(png ${replayed})
+  file(SHA256 ${png} png_hash)
+  if(NOT png_hash STREQUAL headless_png)
+    message(FATAL_ERROR "${png} of the stopped clock's flight differs from the viewer's frame")
+  endif()
+endforeach()
 
 # A flight played in the window: at its start, the frame `fly` renders first (the default flight,
 # from 400 km: the space mode); with the clock running, the camera moves along it.
@@ -94,8 +129,9 @@ if(NOT playing_status EQUAL 0 OR NOT playing_height LESS 400000)
                       "${playing_height}, ${playing_error}")
 endif()
 
-# The clock runs by default: the scene's time has moved on by the last frame.
-run_view(running --frames 3 --screenshot ${WORK}/running.exr)
+# The clock runs by default: the scene's time has moved on by the last frame. Recorded, a clock
+# at rate 1 needs no scene_time: the flight's waves run with it.
+run_view(running --frames 3 --screenshot ${WORK}/running.exr --record ${WORK}/running_flight.json)
 if(NOT running_status EQUAL 0)
   message(FATAL_ERROR "view failed (${running_status}): ${running_error}")
 endif()
@@ -103,6 +139,12 @@ file(READ ${WORK}/running.json running)
 string(JSON time GET "${running}" time)
 if(NOT time GREATER 0)
   message(FATAL_ERROR "the clock did not run: time ${time}")
+endif()
+file(READ ${WORK}/running_flight.json running_flight)
+string(JSON running_clock ERROR_VARIABLE no_running_clock GET "${running_flight}" keyframes 0
+       scene_time)
+if(NOT no_running_clock)
+  message(FATAL_ERROR "a clock at rate 1 recorded its scene_time ${running_clock}")
 endif()
 
 # Bad input: status 2 before any window, nothing written.

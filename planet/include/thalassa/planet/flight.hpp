@@ -1,9 +1,11 @@
-// thalassa — scripted flights: a base scene and keyframes of the camera (and optionally the sun)
-// in time, interpolated smoothly into the scene of each frame (DESIGN section 5, `thalassa fly`;
-// the file format is in docs/flight.md). CPU only, no GL: an engine can fly its own camera with it.
+// thalassa — scripted flights: a base scene and keyframes of the camera (and optionally the sun,
+// the exposure and the scene's clock) in time, interpolated smoothly into the scene of each frame
+// (DESIGN section 5, `thalassa fly`; the file format is in docs/flight.md). CPU only, no GL: an
+// engine can fly its own camera with it.
 //
 // Interpolation is per channel (each of camera.lat, .lon, .height, .heading, .pitch, .roll,
-// .fov_y, sun.zenith, .azimuth, .utc has its own keys: the keyframes that give it). Every numeric
+// .fov_y, sun.zenith, .azimuth, .utc, image.exposure and the scene's time has its own keys: the
+// keyframes that give it). Every numeric
 // channel is a monotone cubic Hermite spline (Fritsch-Carlson, the "PCHIP" of MATLAB and SciPy):
 // C1 in time, exact at the keys, and never outside the range of its two neighbouring keys, so a
 // camera never overshoots a keyframe (below the sea, past the pole, beyond straight down). A
@@ -11,9 +13,13 @@
 // frame, eases in or out there (zero speed), so that holding it beyond stays C1.
 // Heights are interpolated in log(height + kFlightHeightOffset), so that a descent spends equal
 // times on equal ratios of height; angles the short way round (a difference of exactly 180
-// degrees turns clockwise). sun.utc is interpolated linearly in time. Before a channel's first
-// key and after its last it holds that key's value; a channel no keyframe gives keeps the base
-// scene's value.
+// degrees turns clockwise), the exposure in its logarithm. sun.utc is interpolated linearly in
+// time. Before a channel's first key and after its last it holds that key's value; a channel no
+// keyframe gives keeps the base scene's value.
+// The scene's time (`scene_time` in a keyframe: the waves' and the ships' clock) is interpolated
+// linearly between its keys, so that a stopped clock (equal keys) stays stopped and a faster one
+// keeps its rate, and runs at rate 1 before its first key and after its last; a flight that
+// gives no scene_time runs it at rate 1 from the base scene's `time`.
 #pragma once
 
 #include <optional>
@@ -50,6 +56,8 @@ struct FlightValues {
   std::optional<double> sun_zenith;    // sun.zenith, degrees
   std::optional<double> sun_azimuth;   // sun.azimuth, degrees clockwise from north
   std::optional<std::string> sun_utc;  // sun.utc
+  std::optional<double> exposure;      // image.exposure, 1/(W m^-2 sr^-1 nm^-1)
+  std::optional<double> scene_time;    // the scene's `time`, s (a keyframe's `scene_time`)
 };
 
 struct FlightKeyframe {
@@ -113,13 +121,15 @@ class Flight {
   // Scene keys that some keyframe gives ("camera.height", "sun.utc", ...).
   const std::vector<std::string>& animated_keys() const { return animated_; }
 
-  // The animated channels at time t (seconds; any t, held constant outside the keys); channels
-  // no keyframe gives are absent. Longitude in (-180, 180], heading and sun azimuth in [0, 360),
+  // The animated channels at time t (seconds; any t, held constant outside the keys, but for
+  // the scene's time, which runs at rate 1 there); channels no keyframe gives are absent.
+  // Longitude in (-180, 180], heading and sun azimuth in [0, 360),
   // roll in (-180, 180], latitude, pitch, zenith and fov clamped to their scene ranges, height
   // within its neighbouring keys' range and >= 0.
   FlightValues sample(double t) const;
   // The scene at time t: the base scene (with its --set overrides), the sampled channels, and
-  // `time` = the base scene's time + t (the waves move with the flight). `merged_json` (optional)
+  // `time` the sampled scene time, or when no keyframe gives it the base scene's time + t (the
+  // waves move with the flight). `merged_json` (optional)
   // receives the scene as canonical JSON (SceneBuilder::merged_json), for metadata.
   Scene scene_at(double t, std::string* merged_json = nullptr) const;
   Scene frame_scene(int frame, std::string* merged_json = nullptr) const {
@@ -137,6 +147,8 @@ class Flight {
   };
   SceneBuilder base_builder() const;
   void build_channels();
+  // Builds the first and the last frame's scenes: throws what a frame's scene would.
+  void check_ends() const;
 
   std::string source_;
   std::vector<Step> steps_;
@@ -151,6 +163,7 @@ class Flight {
   std::vector<MonotoneCubic> splines_;
   std::vector<std::vector<double>> key_times_, key_values_;  // per channel, as given
   std::vector<double> utc_times_, utc_seconds_;              // sun.utc keys
+  std::vector<double> clock_times_, clock_values_;           // scene_time keys, s
 };
 
 // The embedded default flight's JSON text.
