@@ -21,16 +21,33 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 constexpr double kFootprintMargin = 1.01;
 // Samples per side of the blocks whose distance is taken at their centre only.
 constexpr int kChartBlock = 8;
+// The chart's precision: each sample's signed distance is within max(1.1 cm, 1.1 % of the
+// chart's spacing) of the exact one, so that its s is the exact s at a point that near it (the
+// distance is 1-Lipschitz with a unit gradient): within 1.5 |1 - scale| 0.011 m / fade of the
+// exact value (the smoothstep's slope) where the spacing is at most 1 m, and a hundredth of a
+// sample from exact where it is wider, which bilinear filtering over that spacing cannot resolve
+// anyway (a 1 km chart does not place a 150 m fade to the centimetre). Stop 46 held 1.1 cm at
+// every spacing; a 200 km area seen whole from 100 km then took 43 ms of exact distances near
+// its edge, 7 ms with the relative part (docs/wakes.md).
 // Largest difference (m) between a block's signed distance and the bilinear interpolation of its
-// corners' for the block to be filled by interpolation: s then differs from the exact one by
-// at most 1.5 |1 - scale| tolerance / fade (the smoothstep's slope), 1.5e-4 for a 100 m fade.
+// corners' for the block to be filled by interpolation: the larger of kChartDistanceTolerance
+// and kChartRelativeDistanceTolerance times the spacing.
 constexpr double kChartDistanceTolerance = 0.01;
+constexpr double kChartRelativeDistanceTolerance = 0.01;
 // Largest error bound (m) of CalmArea::estimate_signed_distance for a sample's value to be taken
-// from it rather than from the exact CalmArea::signed_distance: 1 mm, a tenth of the
-// interpolation's tolerance (s then within 1.5 |1 - scale| 0.011 m / fade of the exact one).
+// from it rather than from the exact CalmArea::signed_distance: a tenth of the interpolation's,
+// the larger of kChartEstimateTolerance and kChartRelativeEstimateTolerance times the spacing.
 // Where the bound is larger, the estimate still decides, with its bound, whether a block is
 // wholly outside or deeper than the fade.
 constexpr double kChartEstimateTolerance = 1e-3;
+constexpr double kChartRelativeEstimateTolerance = 1e-3;
+
+double estimate_tolerance(double spacing) {
+  return std::max(kChartEstimateTolerance, kChartRelativeEstimateTolerance * spacing);
+}
+double interpolation_tolerance(double spacing) {
+  return std::max(kChartDistanceTolerance, kChartRelativeDistanceTolerance * spacing);
+}
 // Samples of s = 1 kept around the areas' projected extent, so the chart's border is outside.
 constexpr int kChartBorderSamples = 2;
 
@@ -59,13 +76,13 @@ double horizon_length(const Planet& planet, double height) {
 
 // Builds the chart of the areas in view over [lo, hi] (m, frame plane). The signed distances
 // are computed at block centres, corners and edge midpoints, as CalmArea's estimate where its
-// bound is below kChartEstimateTolerance, else exactly (CalmArea::signed_distance). A block of
+// bound is below the estimate's tolerance, else exactly (CalmArea::signed_distance). A block of
 // samples is filled without computing more of them when
 // - for every area the block is wholly outside (d + e + r <= 0) or wholly deeper than the fade
 //   (d - e - r >= fade), e the distance's error bound, r the block's radius (the distance is
 //   1-Lipschitz): s is exact there;
-// - or every area's distance at the block's centre and edge midpoints is within
-//   kChartDistanceTolerance of the bilinear interpolation of its corners: s = fade(d) of the
+// - or every area's distance at the block's centre and edge midpoints is within the
+//   interpolation's tolerance of the bilinear interpolation of its corners: s = fade(d) of the
 //   interpolated d (exact for a straight edge; near a vertex the block is split instead);
 // otherwise it is split in four, down to single cells.
 class ChartBuilder {
@@ -77,7 +94,9 @@ class ChartBuilder {
         local_(planet, frame.nadir.lat, frame.nadir.lon, 0.0),
         areas_(areas),
         chart_(chart),
-        distances_(areas.size() * chart.scale.size()) {}
+        distances_(areas.size() * chart.scale.size()),
+        estimate_tolerance_(estimate_tolerance(chart.spacing)),
+        interpolation_tolerance_(interpolation_tolerance(chart.spacing)) {}
 
   void fill(int i0, int j0, int size) {
     const int ci = i0 + size / 2, cj = j0 + size / 2, h = size / 2;
@@ -116,7 +135,7 @@ class ChartBuilder {
                                    {distance(a, i0 + size, j0 + h), 0.5 * (d10 + d11)}};
       bool bilinear = true;
       for (const auto& c : checks)
-        bilinear = bilinear && std::abs(c[0] - c[1]) <= kChartDistanceTolerance;
+        bilinear = bilinear && std::abs(c[0] - c[1]) <= interpolation_tolerance_;
       if (!bilinear) {
         for (int dj : {0, h})
           for (int di : {0, h}) fill(i0 + di, j0 + dj, h);
@@ -158,10 +177,10 @@ class ChartBuilder {
     }
     return x;
   }
-  // The same, to within kChartEstimateTolerance.
+  // The same, to within the estimate's tolerance.
   const Distance& precise(std::size_t a, int i, int j) {
     Distance& x = distances_[a * chart_.scale.size() + index(i, j)];
-    if (estimate(a, i, j).e > kChartEstimateTolerance) {
+    if (estimate(a, i, j).e > estimate_tolerance_) {
       const Geodetic g = planet_.geodetic(ecef(i, j));
       x = {areas_[a].signed_distance(g.lat, g.lon), 0.0};
     }
@@ -175,6 +194,7 @@ class ChartBuilder {
   const std::vector<CalmArea>& areas_;
   ocean::CalmScaleChart& chart_;
   std::vector<Distance> distances_;  // per area and sample; NaN until computed
+  const double estimate_tolerance_, interpolation_tolerance_;  // m
 };
 
 // The chart: the areas in view, sampled over [lo, hi] (m, frame plane) with a border of s = 1,
@@ -245,6 +265,10 @@ FootprintBox screen_footprint(const Planet& planet, const Scene& scene, const Na
 }
 
 }  // namespace
+
+double calm_chart_distance_tolerance(double spacing) {
+  return estimate_tolerance(spacing) + interpolation_tolerance(spacing);
+}
 
 GeoBounds view_footprint(const Planet& planet, const NadirFrame& frame) {
   if (frame.camera_height < 0.0) return GeoBounds{};
