@@ -308,10 +308,9 @@ std::string write_screenshot(const std::string& exr, const Renderer& renderer,
   return "wrote " + exr + ", " + png + " and " + json;
 }
 
-// The panel: what is drawn and how fast, and the scene's main keys, edited into `next`.
 // A flight played in the window (`--flight`): its time, advanced by the clock, gives each
-// frame's camera, sun and scene time (Flight::scene_at), looping at its end, until the camera is
-// flown by hand.
+// frame's camera, sun and scene time (Flight::scene_at), and its exposure where it animates one,
+// looping at its end, until the camera is flown by hand.
 struct FlightPlayback {
   std::optional<Flight> flight;
   bool playing = false;
@@ -325,6 +324,7 @@ struct FlightPlayback {
   }
 };
 
+// The panel: what is drawn and how fast, and the scene's main keys, edited into `next`.
 void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& viewed, Scene& next,
                 bool& time_running, double& time_rate, bool& screenshot, bool& record,
                 const FlightRecorder& recorder, FlightPlayback& playback,
@@ -616,8 +616,8 @@ int run_view(const ViewArgs& args) {
       draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
                  record, recorder, playback, message);
     if (playback.playing) {
-      // The flight's camera, sun and time at its own time, which the clock moves; the sea's
-      // and the image's keys stay the viewer's.
+      // The flight's camera, sun and time at its own time, which the clock moves, and its
+      // exposure where it animates one; the sea's and the image's other keys stay the viewer's.
       if (time_running && frame > 0) playback.time += dt * time_rate;
       const double duration = playback.duration();
       if (playback.time > duration) playback.time = duration > 0.0 ? 0.0 : duration;  // loop

@@ -96,6 +96,8 @@ struct Channel {
 };
 
 constexpr double kFullTurn = 360.0;  // degrees
+// The largest scene `time`, s (scene files' range, engine/src/scene.cpp).
+constexpr double kMaxSceneTime = 1e12;
 
 // The numeric channels; sun.utc and the scene's time are handled apart (linear in time).
 const std::vector<Channel>& channels() {
@@ -110,8 +112,9 @@ const std::vector<Channel>& channels() {
       {"camera", "fov_y", &FlightValues::fov_y, ChannelKind::Linear, 0.01, 179, false},
       {"sun", "zenith", &FlightValues::sun_zenith, ChannelKind::Linear, 0, 180, false},
       {"sun", "azimuth", &FlightValues::sun_azimuth, ChannelKind::Angle, 0, 360, false},
-      // The exposure in its logarithm: a change by a factor 100 over 2 s passes 10 at 1 s, as
-      // a camera's exposure steps in stops. The scene's range is (0, 1e6].
+      // The exposure in its logarithm, so that it changes steadily in stops (between two keys
+      // that span the flight, 1 and 100 two seconds apart, it passes 10 half way). The scene's
+      // range is (0, 1e6]; the lower clamp only keeps exp's underflow positive.
       {"image", "exposure", &FlightValues::exposure, ChannelKind::Log,
        std::numeric_limits<double>::min(), 1e6, false},
   };
@@ -443,6 +446,16 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
              "at the flight's start",
          number_text(f.clock_values_.front()));
   }
+  if (!f.clock_times_.empty()) {
+    const double last_frame = f.frame_time(f.frame_count_ - 1);
+    if (f.last_scene_time(last_frame) > kMaxSceneTime)
+      fail(source, "keyframes[" + std::to_string(f.last_clock_key()) + "].scene_time",
+           "at most " + number_text(kMaxSceneTime - (last_frame - f.clock_times_.back())) +
+               " (s): after its last key the scene's time runs at rate 1, and may not pass " +
+               number_text(kMaxSceneTime) + " s by the flight's last frame (" +
+               number_text(last_frame) + " s)",
+           number_text(f.clock_values_.back()));
+  }
   f.check_ends();
   return f;
 }
@@ -501,6 +514,17 @@ void Flight::build_channels() {
   if (!clock_times_.empty()) animated_.push_back("time");
 }
 
+double Flight::last_scene_time(double last_frame) const {
+  if (clock_times_.empty()) return base_time_ + last_frame;
+  return clock_values_.back() + std::max(0.0, last_frame - clock_times_.back());
+}
+
+std::size_t Flight::last_clock_key() const {
+  std::size_t last = keyframes_.size() - 1;
+  while (!keyframes_[last].values.scene_time) --last;
+  return last;
+}
+
 void Flight::check_ends() const {
   scene_at(0.0);
   scene_at(frame_time(frame_count_ - 1));
@@ -525,13 +549,19 @@ void Flight::set_fps(double fps) {
   if (frames > kFlightMaxFrames)
     throw SceneError("--fps: expected at most " + std::to_string(kFlightMaxFrames) +
                      " frames (duration x fps + 1), got " + number_text(frames) + " frames");
+  const double last_frame = (frames - 1.0) / fps;
+  if (last_scene_time(last_frame) > kMaxSceneTime)
+    throw SceneError("--fps: expected a rate whose last frame (at " + number_text(last_frame) +
+                     " s) keeps the scene's time at most " + number_text(kMaxSceneTime) +
+                     " s, got " + number_text(fps) + " (it would be " +
+                     number_text(last_scene_time(last_frame)) + " s)");
   const double old_fps = fps_;
   const int old_count = frame_count_;
   fps_ = fps;
   frame_count_ = static_cast<int>(frames);
   build_channels();  // the ends' easing depends on the last frame's time
   try {
-    check_ends();  // a later last frame may take the scene's time past its range
+    check_ends();  // every frame's scene is still one a scene file allows
   } catch (...) {
     fps_ = old_fps;
     frame_count_ = old_count;
@@ -575,10 +605,11 @@ FlightValues Flight::sample(double t) const {
     // At a key, its own value (the logarithm's round trip would change a height by an ulp).
     const auto hit = std::lower_bound(times.begin(), times.end(), t);
     double value;
-    if (t <= times.front() || t >= times.back() || (hit != times.end() && *hit == t)) {
-      const std::size_t i = t <= times.front()  ? 0
-                            : t >= times.back() ? times.size() - 1
-                                                : static_cast<std::size_t>(hit - times.begin());
+    // NaN falls on the first key, as in MonotoneCubic.
+    if (!(t > times.front()) || t >= times.back() || (hit != times.end() && *hit == t)) {
+      const std::size_t i = !(t > times.front()) ? 0
+                            : t >= times.back()  ? times.size() - 1
+                                                 : static_cast<std::size_t>(hit - times.begin());
       value = key_values_[c][i];
       if (channel.kind == ChannelKind::Angle)
         value = wrap_angle(value, channel.lo, channel.upper_closed);
@@ -596,7 +627,7 @@ FlightValues Flight::sample(double t) const {
   if (!utc_times_.empty()) {
     const auto hit = std::lower_bound(utc_times_.begin(), utc_times_.end(), t);
     std::size_t key = utc_times_.size();  // a key's own text, when t is at or beyond one
-    if (t <= utc_times_.front())
+    if (!(t > utc_times_.front()))        // NaN too
       key = 0;
     else if (t >= utc_times_.back())
       key = utc_times_.size() - 1;
@@ -619,7 +650,9 @@ FlightValues Flight::sample(double t) const {
     // keys' own values at the keys.
     const std::vector<double>&tk = clock_times_, &vk = clock_values_;
     const auto hit = std::lower_bound(tk.begin(), tk.end(), t);
-    if (t <= tk.front()) {
+    if (std::isnan(t)) {
+      out.scene_time = vk.front();  // the first key, as every channel's
+    } else if (t <= tk.front()) {
       out.scene_time = vk.front() - (tk.front() - t);
     } else if (t >= tk.back()) {
       out.scene_time = vk.back() + (t - tk.back());

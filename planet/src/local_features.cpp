@@ -21,24 +21,28 @@ constexpr double kDegree = 3.14159265358979323846 / 180.0;
 constexpr double kFootprintMargin = 1.01;
 // Samples per side of the blocks whose distance is taken at their centre only.
 constexpr int kChartBlock = 8;
-// The chart's precision: each sample's signed distance is within max(1.1 cm, 1.1 % of the
-// chart's spacing) of the exact one, so that its s is the exact s at a point that near it (the
-// distance is 1-Lipschitz with a unit gradient): within 1.5 |1 - scale| 0.011 m / fade of the
-// exact value (the smoothstep's slope) where the spacing is at most 1 m, and a hundredth of a
-// sample from exact where it is wider, which bilinear filtering over that spacing cannot resolve
-// anyway (a 1 km chart does not place a 150 m fade to the centimetre). Stop 46 held 1.1 cm at
-// every spacing; a 200 km area seen whole from 100 km then took 43 ms of exact distances near
-// its edge, 7 ms with the relative part (docs/wakes.md).
+// The chart's precision (calm_chart_distance_tolerance): a sample's signed distance is within
+// max(1.1 cm, 1.1 % of the chart's spacing h) of the exact one, the estimate's tolerance plus the
+// interpolation's below, so that its s is the exact s of a point that near it (the distance is
+// 1-Lipschitz with a unit gradient): within 1.5 |1 - scale| 0.011 max(1 m, h) / fade of the
+// exact value (the smoothstep's slope 1.5 / fade). The part relative to h stays below the
+// chart's own error between its samples, which bilinear filtering of the fade's smoothstep
+// leaves: up to h^2 / 8 times its largest curvature 6 |1 - scale| / fade^2, more than the
+// tolerance's 1.5 |1 - scale| 0.011 h / fade wherever h > fade / 45 (3.3 m for a 150 m fade).
+// Stop 46 held 1.1 cm at every spacing; a 200 km area seen whole from 100 km then took 43 ms of
+// exact distances near its edge, 7 ms with the relative part (docs/wakes.md). (The bounds hold
+// at the points a block is checked at, its corners, centre and edge midpoints; between them
+// the interpolated distance is taken to be as close.)
 // Largest difference (m) between a block's signed distance and the bilinear interpolation of its
 // corners' for the block to be filled by interpolation: the larger of kChartDistanceTolerance
-// and kChartRelativeDistanceTolerance times the spacing.
+// and kChartRelativeDistanceTolerance (m per m of spacing) times the spacing.
 constexpr double kChartDistanceTolerance = 0.01;
 constexpr double kChartRelativeDistanceTolerance = 0.01;
 // Largest error bound (m) of CalmArea::estimate_signed_distance for a sample's value to be taken
 // from it rather than from the exact CalmArea::signed_distance: a tenth of the interpolation's,
-// the larger of kChartEstimateTolerance and kChartRelativeEstimateTolerance times the spacing.
-// Where the bound is larger, the estimate still decides, with its bound, whether a block is
-// wholly outside or deeper than the fade.
+// the larger of kChartEstimateTolerance and kChartRelativeEstimateTolerance (m per m of spacing)
+// times the spacing. Where the bound is larger, the estimate still decides, with its bound,
+// whether a block is wholly outside or deeper than the fade.
 constexpr double kChartEstimateTolerance = 1e-3;
 constexpr double kChartRelativeEstimateTolerance = 1e-3;
 

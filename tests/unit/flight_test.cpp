@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <string>
@@ -476,8 +477,9 @@ TEST(Flight, SceneTimeKeysStopOrSpeedTheClockAndRunItAtRateOneBeyond) {
   Flight late = Flight::parse(
       flight_text(R"([{"time": 0, "scene_time": 999999999999.75}, {"time": 0.5}])", R"("fps": 1)"),
       "f.json");
-  EXPECT_NE(error_of([&] { late.set_fps(24.0); }).find("time: expected a number in [0, 1e12]"),
-            std::string::npos);
+  EXPECT_EQ(error_of([&] { late.set_fps(24.0); }),
+            "--fps: expected a rate whose last frame (at 0.5 s) keeps the scene's time at most "
+            "1e12 s, got 24 (it would be 1000000000000.25 s)");
   EXPECT_EQ(late.fps(), 1.0);  // unchanged
   EXPECT_EQ(late.frame_count(), 1);
   EXPECT_EQ(late.frame_scene(0).time, 999999999999.75);
@@ -518,6 +520,21 @@ TEST(Flight, ExposureIsInterpolatedInItsLogarithm) {
   EXPECT_EQ(none.scene_at(0.5).image.exposure, 7.0);
 }
 
+TEST(Flight, NaNTimeGivesTheFirstKeys) {
+  const Flight f = Flight::parse(
+      flight_text(R"([{"time": 0, "scene_time": 5, "camera": {"height": 100, "lat": 10},
+                       "sun": {"utc": "2026-06-21T18:00:00Z"}, "image": {"exposure": 2}},
+                      {"time": 1, "scene_time": 9, "camera": {"height": 10, "lat": 11},
+                       "sun": {"utc": "2026-06-21T19:00:00Z"}, "image": {"exposure": 4}}])"),
+      "f.json");
+  const FlightValues v = f.sample(std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(*v.height, 100.0);
+  EXPECT_EQ(*v.lat, 10.0);
+  EXPECT_EQ(*v.exposure, 2.0);
+  EXPECT_EQ(*v.scene_time, 5.0);
+  EXPECT_EQ(*v.sun_utc, "2026-06-21T18:00:00Z");
+}
+
 // --- overrides ---------------------------------------------------------------------------------
 
 TEST(Flight, SetOverridesTheBaseSceneButNotAnimatedKeys) {
@@ -535,6 +552,11 @@ TEST(Flight, SetOverridesTheBaseSceneButNotAnimatedKeys) {
   EXPECT_EQ(error_of([&] { f.set("image.width=0"); }),
             "--set: image.width: expected an integer in [1, 8192] (pixels), got 0");
   EXPECT_EQ(f.frame_scene(0).image.width, 32);  // a failed --set changes nothing
+  // One that takes the last frame's scene time past 1e12 s is refused too, and changes nothing.
+  EXPECT_NE(error_of([&] { f.set("time=999999999999.5"); }).find("time: expected a number"),
+            std::string::npos);
+  EXPECT_EQ(f.frame_scene(0).time, 0.0);
+  EXPECT_EQ(f.frame_scene(f.frame_count() - 1).time, 1.0);
   const Flight sun = Flight::parse(
       flight_text(R"([{"time": 0, "sun": {"zenith": 80}}, {"time": 1, "sun": {"zenith": 90}}])"),
       "f.json");
@@ -591,7 +613,9 @@ TEST(FlightErrors, NameTheFileTheKeyPathAndTheExpectation) {
        "first key the scene's time runs at rate 1, and may not be negative at the flight's "
        "start, got 3"},
       {flight_text(R"([{"time": 0, "scene_time": 1e12}, {"time": 1}])"),
-       "f.json at t=1 s: time: expected a number in [0, 1e12] (s), got 1000000000001.0"},
+       "f.json: keyframes[0].scene_time: expected at most 999999999999 (s): after its last key "
+       "the scene's time runs at rate 1, and may not pass 1e12 s by the flight's last frame "
+       "(1 s), got 1e12"},
       {flight_text(R"([{"time": 0, "camera": 3}])"),
        "f.json: keyframes[0].camera: expected an object of camera keys, got 3"},
       {flight_text(R"([3])"),

@@ -70,6 +70,10 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
     Scene scene;
     int samples;
     bool whole;  // the areas lie wholly inside the chart: its border is s = 1
+    // A guard that the chart stays as close as it is in fact, well inside its stated bound:
+    // 1.8 to 2.9 times the largest error measured in stop 47 (7.0e-5, 1.1e-4, 3.5e-3, 3.9e-2;
+    // 2e-4 was the test's bound before the tolerance followed the spacing).
+    double measured = 0.0;
   };
   std::vector<Case> cases;
   for (const double lon : {10.0, 179.99, -60.0}) {
@@ -83,7 +87,7 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
     cases.push_back({wide                      ? "200 km area over its edge from 2 km"
                      : lon > 0.0 && lon < 90.0 ? "overlapping areas from 2 km at 10 E"
                                                : "overlapping areas from 2 km across 180",
-                     scene, 128, !wide});
+                     scene, 128, !wide, 2e-4});
   }
   for (const auto& [half_deg, height] : {std::pair{0.9, 1e5}, {4.5, 4e5}}) {
     // Looking north 30 degrees down from over the southern edge, as planet_bench's squares.
@@ -94,7 +98,7 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
     scene.camera.pitch = -30.0;
     scene.calm_areas = {Square(45.0, 10.0, half_deg, 0.2, 150.0)};
     cases.push_back({half_deg < 1.0 ? "200 km square from 100 km" : "1000 km square from 400 km",
-                     scene, kCalmChartSamples, false});
+                     scene, kCalmChartSamples, false, half_deg < 1.0 ? 1e-2 : 0.1});
   }
   for (const Case& c : cases) {
     const Scene& scene = c.scene;
@@ -130,6 +134,9 @@ TEST(LocalFeatures, CalmChartEqualsTheAreasOwnScale) {
     std::printf("  spacing %.1f m, tolerance %.3f m: worst %.2e, bound %.2e, %d samples fading\n",
                 chart.spacing, tolerance, worst, bound, fading);
     EXPECT_LE(worst, bound) << c.name;
+    if (c.measured > 0.0) {
+      EXPECT_LE(worst, c.measured) << c.name;
+    }
     EXPECT_GT(inside, 100) << c.name;
     if (!c.whole) {
       // The area fills the image beyond its edge: the chart holds both sides of the edge.

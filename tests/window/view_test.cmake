@@ -46,7 +46,7 @@ if(NOT again_png STREQUAL view_png)
 endif()
 
 # A recorded flight: a flight file whose first frame, rendered by `fly`, is the viewer's first.
-run_view(recorded --frames 4 --paused --record ${WORK}/flight.json)
+run_view(recorded --frames 8 --paused --record ${WORK}/flight.json)
 if(NOT recorded_status EQUAL 0 OR NOT EXISTS ${WORK}/flight.json)
   message(FATAL_ERROR "view --record failed (${recorded_status}): ${recorded_error}")
 endif()
@@ -83,14 +83,16 @@ if(first_clock_error OR last_clock_error OR NOT first_clock EQUAL base_time
                       "(the scene's ${base_time}; ${first_clock_error}${last_clock_error}), "
                       "image ${image}")
 endif()
-# (At 200 frames a second: the four frames may last a few tens of ms, 0.75 s at most.)
+# (At 200 frames a second: the eight frames last a few tens of ms, at least 2 ms a step under
+# Xvfb, and 1.75 s at most.)
 execute_process(COMMAND ${THALASSA} fly ${WORK}/flight.json --backend osmesa --fps 200
                         -o ${WORK}/replay_all --stats ${WORK}/replay_all.json
                 RESULT_VARIABLE replay_all_status ERROR_VARIABLE replay_all_error)
 file(GLOB replayed ${WORK}/replay_all/frame_*.png)
 list(LENGTH replayed replayed_count)
-if(NOT replay_all_status EQUAL 0 OR replayed_count EQUAL 0)
-  message(FATAL_ERROR "fly of the whole recorded flight failed: ${replay_all_error}")
+if(NOT replay_all_status EQUAL 0 OR replayed_count LESS 2)
+  message(FATAL_ERROR "fly of the whole recorded flight failed or gave ${replayed_count} frames: "
+                      "${replay_all_error}")
 endif()
 file(READ ${WORK}/replay_all.json replay_stats)
 math(EXPR last_frame "${replayed_count} - 1")
@@ -119,6 +121,19 @@ file(SHA256 ${WORK}/played.png played_png)
 file(SHA256 ${WORK}/default_fly/frame_00000.png default_fly_png)
 if(NOT played_png STREQUAL default_fly_png)
   message(FATAL_ERROR "the played flight's first frame differs from fly's")
+endif()
+# A flight that keys the exposure sets it as it plays: from 2.5 at its start (the viewer's first
+# scene) up toward 40 by the third frame.
+file(WRITE ${WORK}/exposure_flight.json [=[{"keyframes": [
+  {"time": 0, "image": {"exposure": 2.5}}, {"time": 1, "image": {"exposure": 40}}]}]=])
+run_view(exposure --flight ${WORK}/exposure_flight.json --frames 3
+         --screenshot ${WORK}/exposure.exr)
+file(READ ${WORK}/exposure.json exposure_scene)
+string(JSON played_exposure GET "${exposure_scene}" image exposure)
+if(NOT exposure_status EQUAL 0 OR NOT played_exposure GREATER 2.5
+   OR NOT played_exposure LESS_EQUAL 40)
+  message(FATAL_ERROR "the played flight's exposure (${exposure_status}): ${played_exposure}, "
+                      "${exposure_error}")
 endif()
 run_view(playing --flight ${DATA}/flights/orbit_to_surface.json --frames 3
          --screenshot ${WORK}/playing.exr)

@@ -3,6 +3,7 @@
 // index.html.
 #include "thalassa/validation/report.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "report_detail.hpp"

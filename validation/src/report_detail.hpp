@@ -1,6 +1,7 @@
 // Internal to the validation report: the helpers its files share (report_format.cpp), the
 // plots (report_plots.cpp), the CSV files (report_csv.cpp) and index.html (report_html.cpp),
-// which write_report (report.cpp) puts together. Not installed; the public surface is
+// which write_report (report.cpp) puts together with results.json (report_json.cpp) and the
+// summaries (report_summary.cpp). Not installed; the public surface is
 // thalassa/validation/report.hpp.
 #pragma once
 

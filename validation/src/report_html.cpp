@@ -7,7 +7,6 @@
 
 namespace thalassa::validation {
 
-namespace fs = std::filesystem;
 namespace detail {
 
 namespace {

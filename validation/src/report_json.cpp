@@ -1,8 +1,10 @@
 // results.json of the validation report: written and read back (thalassa/validation/report.hpp).
 #include "thalassa/validation/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "report_detail.hpp"
 #include "thalassa/ocean/method.hpp"

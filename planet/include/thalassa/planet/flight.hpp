@@ -104,13 +104,14 @@ class Flight {
 
   // Overrides a key of the base scene, like `--set` for a scene ("image.width=32"). Refuses a key
   // the keyframes animate (camera.height when a keyframe gives it; sun.* when the keyframes give
-  // the sun). Checked at once: a failed call changes nothing.
+  // the sun; time when they give scene_time). Checked at once: a failed call changes nothing.
   void set(std::string_view assignment);
 
   // Renders the flight at another frame rate, its length in seconds kept (its `duration`; for a
   // flight given by `frames`, (frames - 1) / fps): frames at 0, 1/fps, ... up to that length.
-  // Throws SceneError ("--fps: expected ...") for fps not in (0, kFlightMaxFps] or more than
-  // kFlightMaxFrames frames; a failed call changes nothing.
+  // Throws SceneError ("--fps: expected ...") for fps not in (0, kFlightMaxFps], more than
+  // kFlightMaxFrames frames, or a last frame whose scene time would pass 1e12 s; a failed call
+  // changes nothing.
   void set_fps(double fps);
 
   const std::string& source() const { return source_; }
@@ -149,6 +150,10 @@ class Flight {
   void build_channels();
   // Builds the first and the last frame's scenes: throws what a frame's scene would.
   void check_ends() const;
+  // The scene's time at the last frame, at `last_frame` s into the flight (the clock's greatest).
+  double last_scene_time(double last_frame) const;
+  // The index of the last keyframe that gives scene_time (there must be one).
+  std::size_t last_clock_key() const;
 
   std::string source_;
   std::vector<Step> steps_;

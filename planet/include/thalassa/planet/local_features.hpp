@@ -30,17 +30,19 @@ GeoBounds view_footprint(const Planet& planet, const NadirFrame& frame);
 // sample at the point of the sea at rest above it), kCalmChartSamples along its longer side.
 // Samples far from every edge are filled from one distance per 8 x 8 block (the signed distance
 // is 1-Lipschitz), so the cost follows the edges' length on the chart, not its area. Distances
-// are CalmArea::estimate_signed_distance's where its bound is below a tenth of
-// calm_chart_distance_tolerance, else exact.
+// are CalmArea::estimate_signed_distance's where its bound is below 1/11 of
+// calm_chart_distance_tolerance (the rest is the interpolation's), else exact.
 ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& scene,
                                           const NadirFrame& frame,
                                           int chart_samples = kCalmChartSamples);
 
 // The largest error (m) of the signed distance behind a calm chart's sample, for a chart of
-// `spacing` m between samples: 1.1 cm up to a 1 m spacing, 1.1 % of the spacing beyond. Each
+// `spacing` m between samples: 1.1 cm up to a 1 m spacing, 1.1 % of the spacing beyond (held at
+// the points each 8 x 8 block is checked at; the samples between are interpolated). Each
 // sample's s is then the exact s of a point that near it, and within 1.5 |1 - scale| times this
-// over the fade of the exact value (for one area; overlapping areas add). The part over the
-// spacing is a hundredth of a sample, which the chart's bilinear filtering cannot resolve.
+// over the fade of the exact value (for one area; overlapping areas add). The part relative to
+// the spacing stays below the error the chart's bilinear filtering makes between its samples
+// wherever the spacing exceeds fade / 45.
 double calm_chart_distance_tolerance(double spacing);
 
 }  // namespace thalassa
