@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <glm/glm.hpp>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -131,6 +132,52 @@ double wrap_angle(double x, double lo, bool upper_closed) {
   if (r >= kFullTurn) r -= kFullTurn;  // -tiny + 360 rounds to 360
   if (upper_closed && r == 0.0) r = kFullTurn;
   return lo + r;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The camera's position on great circles: unit vectors of (geodetic latitude, longitude).
+
+using Vec3 = glm::dvec3;
+constexpr double kRadian = 3.14159265358979323846 / 180.0;
+// Two consecutive position keys may be at most this far apart (degrees of arc): the great circle
+// between antipodes is undefined, and near them its direction is lost in rounding.
+constexpr double kMaxKeyArc = 179.0;
+
+Vec3 direction_of(double lat, double lon) {
+  const double phi = lat * kRadian, lambda = lon * kRadian;
+  return {std::cos(phi) * std::cos(lambda), std::cos(phi) * std::sin(lambda), std::sin(phi)};
+}
+
+// The tangent at unit p toward unit q whose length is their arc (rad): the sphere's log map.
+Vec3 log_map(const Vec3& p, const Vec3& q) {
+  const double c = glm::dot(p, q);
+  const Vec3 w = q - c * p;
+  const double sine = glm::length(w);
+  if (!(sine > 0.0)) return Vec3(0.0);  // the same point (antipodes are refused when parsed)
+  return w * (std::atan2(sine, c) / sine);
+}
+
+// The point reached from unit p along the tangent v (its length the arc, rad): the exp map.
+Vec3 exp_map(const Vec3& p, const Vec3& v) {
+  const double arc = glm::length(v);
+  if (!(arc > 0.0)) return p;
+  return glm::normalize(std::cos(arc) * p + std::sin(arc) / arc * v);
+}
+
+// The great circle from a to b at fraction u of its arc.
+Vec3 slerp(const Vec3& a, const Vec3& b, double u) { return exp_map(a, u * log_map(a, b)); }
+
+Vec3 vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+// Whether the keyframes give the position as pairs (every keyframe that gives camera.lat or
+// camera.lon gives both), and at least one: it then follows great circles.
+bool positions_paired(const std::vector<FlightKeyframe>& keys) {
+  bool any = false;
+  for (const FlightKeyframe& k : keys) {
+    if (k.values.lat.has_value() != k.values.lon.has_value()) return false;
+    any = any || k.values.lat.has_value();
+  }
+  return any;
 }
 
 // The value of channel `c` in interpolation space.
@@ -396,6 +443,28 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
     f.keyframes_.push_back(std::move(k));
   }
 
+  // Positions on great circles: no two consecutive ones (nearly) antipodal.
+  if (positions_paired(f.keyframes_)) {
+    std::optional<std::size_t> before;
+    for (std::size_t i = 0; i < f.keyframes_.size(); ++i) {
+      const FlightValues& v = f.keyframes_[i].values;
+      if (!v.lat) continue;
+      if (before) {
+        const FlightValues& w = f.keyframes_[*before].values;
+        const double arc =
+            glm::length(log_map(direction_of(*w.lat, *w.lon), direction_of(*v.lat, *v.lon))) /
+            kRadian;
+        if (arc > kMaxKeyArc)
+          fail(source, "keyframes[" + std::to_string(i) + "].camera",
+               "a position at most " + number_text(kMaxKeyArc) + " degrees of arc from keyframes[" +
+                   std::to_string(*before) +
+                   "]'s (the great circle between antipodes is undefined)",
+               number_text(std::round(arc * 1e3) / 1e3) + " degrees");
+      }
+      before = i;
+    }
+  }
+
   // Length: a duration (default: the last keyframe's time) or a number of frames.
   if (doc.contains("duration") && doc.contains("frames"))
     fail(source, "frames", "either duration or frames", "both");
@@ -512,6 +581,67 @@ void Flight::build_channels() {
     clock_values_.push_back(*k.values.scene_time);
   }
   if (!clock_times_.empty()) animated_.push_back("time");
+  build_position_path();
+}
+
+// The position's spherical Hermite curve: at each key its velocity, the analogue of the
+// channels' monotone cubic (docs/flight.md): inside, the weighted mean of the velocities in
+// from the key before and out to the key after (as the great circles' secants, tangent at the
+// key), zero where they differ by 90 degrees or more (the camera turns back or stops there) and
+// at most three times the slower of them; at an end, the secant's velocity, or zero where the
+// path is held beyond that key within the flight (it eases in or out, as the channels do).
+void Flight::build_position_path() {
+  great_circles_ = positions_paired(keyframes_);
+  position_times_.clear();
+  position_dirs_.clear();
+  position_velocities_.clear();
+  if (!great_circles_) return;
+  std::vector<Vec3> p;
+  for (const FlightKeyframe& k : keyframes_) {
+    if (!k.values.lat) continue;
+    position_times_.push_back(k.time);
+    p.push_back(direction_of(*k.values.lat, *k.values.lon));
+  }
+  const std::vector<double>& t = position_times_;
+  const std::size_t n = p.size();
+  std::vector<Vec3> m(n, Vec3(0.0));
+  if (n >= 2) {
+    const auto out = [&](std::size_t i) { return log_map(p[i], p[i + 1]) / (t[i + 1] - t[i]); };
+    const auto in = [&](std::size_t i) { return -log_map(p[i], p[i - 1]) / (t[i] - t[i - 1]); };
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      const Vec3 a = in(i), b = out(i);
+      if (!(glm::dot(a, b) > 0.0)) continue;
+      const double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
+      m[i] = (h1 * a + h0 * b) / (h0 + h1);
+      const double most = 3.0 * std::min(glm::length(a), glm::length(b));
+      if (glm::length(m[i]) > most) m[i] *= most / glm::length(m[i]);
+    }
+    const double last_frame = frame_time(frame_count_ - 1);
+    if (!(t.front() > 0.0)) m[0] = out(0);
+    if (!(t.back() < last_frame)) m[n - 1] = in(n - 1);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    position_dirs_.push_back({p[i].x, p[i].y, p[i].z});
+    position_velocities_.push_back({m[i].x, m[i].y, m[i].z});
+  }
+}
+
+std::pair<double, double> Flight::position_between(double t) const {
+  const std::size_t i = interval_of(position_times_, t);
+  const double h = position_times_[i + 1] - position_times_[i];
+  const double u = (t - position_times_[i]) / h;
+  // The spherical Bezier of the Hermite data (De Casteljau with great-circle steps): its
+  // velocity at each end is the key's, and between two keys on one great circle whose
+  // velocities are its secant's, it is that great circle at an even pace.
+  const Vec3 b0 = vec(position_dirs_[i]), b3 = vec(position_dirs_[i + 1]);
+  const Vec3 b1 = exp_map(b0, vec(position_velocities_[i]) * (h / 3.0));
+  const Vec3 b2 = exp_map(b3, -vec(position_velocities_[i + 1]) * (h / 3.0));
+  const Vec3 q0 = slerp(b0, b1, u), q1 = slerp(b1, b2, u), q2 = slerp(b2, b3, u);
+  const Vec3 r0 = slerp(q0, q1, u), r1 = slerp(q1, q2, u);
+  const Vec3 d = slerp(r0, r1, u);
+  const double lat = std::atan2(d.z, std::hypot(d.x, d.y)) / kRadian;
+  const double lon = std::atan2(d.y, d.x) / kRadian;
+  return {std::clamp(lat, -90.0, 90.0), wrap_angle(lon, -180.0, true)};
 }
 
 double Flight::last_scene_time(double last_frame) const {
@@ -613,6 +743,10 @@ FlightValues Flight::sample(double t) const {
       value = key_values_[c][i];
       if (channel.kind == ChannelKind::Angle)
         value = wrap_angle(value, channel.lo, channel.upper_closed);
+    } else if (great_circles_ &&
+               (channel.member == &FlightValues::lat || channel.member == &FlightValues::lon)) {
+      const auto [lat, lon] = position_between(t);
+      value = channel.member == &FlightValues::lat ? lat : lon;
     } else {
       value = from_space(channel, splines_[c](t));
       if (channel.kind == ChannelKind::LogHeight || channel.kind == ChannelKind::Log) {

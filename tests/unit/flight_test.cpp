@@ -5,9 +5,12 @@
 #include "thalassa/planet/flight.hpp"
 
 #include <gtest/gtest.h>
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/GeodesicLine.hpp>
 
 #include <unistd.h>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -518,6 +521,123 @@ TEST(Flight, ExposureIsInterpolatedInItsLogarithm) {
       flight_text(R"([{"time": 0}, {"time": 1}])", R"("scene": {"image": {"exposure": 7}})"),
       "f.json");
   EXPECT_EQ(none.scene_at(0.5).image.exposure, 7.0);
+}
+
+// --- the position on great circles ------------------------------------------------------------
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::array<double, 3> unit_of(double lat, double lon) {
+  const double p = lat * kPi / 180.0, l = lon * kPi / 180.0;
+  return {std::cos(p) * std::cos(l), std::cos(p) * std::sin(l), std::sin(p)};
+}
+double dot(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+std::array<double, 3> cross(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+}
+double arc(const std::array<double, 3>& a, const std::array<double, 3>& b) {  // radians
+  const auto c = cross(a, b);
+  return std::atan2(std::sqrt(dot(c, c)), dot(a, b));
+}
+
+TEST(Flight, PositionFollowsTheGreatCircleBetweenTwoKeysAtAnEvenPace) {
+  // From Hawaii toward the Great Lakes in 60 s: 6,500 km, where latitude and longitude
+  // interpolated apart would pass 680 km south of the great circle half way (32.5 N 117.5 W
+  // against 37.0 N 122.6 W).
+  const Flight f = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 20, "lon": -150}},
+                      {"time": 60, "camera": {"lat": 45, "lon": -85}}])"),
+                                 "f.json");
+  const auto a = unit_of(20, -150), b = unit_of(45, -85);
+  const auto normal = cross(a, b);
+  const double total = arc(a, b);
+  double worst_plane = 0.0, worst_pace = 0.0;
+  for (int i = 0; i <= 600; ++i) {
+    const double t = i * 0.1;
+    const FlightValues v = f.sample(t);
+    const auto p = unit_of(*v.lat, *v.lon);
+    worst_plane = std::max(worst_plane, std::fabs(dot(p, normal)) / std::sqrt(dot(normal, normal)));
+    worst_pace = std::max(worst_pace, std::fabs(arc(a, p) - total * t / 60.0));
+  }
+  std::printf("off the great circle %.1e rad, off the even pace %.1e rad\n", worst_plane,
+              worst_pace);
+  EXPECT_LT(worst_plane, 1e-12);
+  EXPECT_LT(worst_pace, 1e-12);
+  // On the ellipsoid: the geodesic's midpoint (GeographicLib) against the path's half way.
+  const GeographicLib::Geodesic& wgs84 = GeographicLib::Geodesic::WGS84();
+  const GeographicLib::GeodesicLine line = wgs84.InverseLine(20, -150, 45, -85);
+  double mid_lat, mid_lon;
+  line.Position(0.5 * line.Distance(), mid_lat, mid_lon);
+  const FlightValues half = f.sample(30.0);
+  double apart;
+  wgs84.Inverse(mid_lat, mid_lon, *half.lat, *half.lon, apart);
+  std::printf("half way %.0f m from the geodesic's midpoint (of %.0f km)\n", apart,
+              line.Distance() / 1e3);
+  EXPECT_LT(apart, 10e3);  // measured 4.3 km: the great circle of geodetic coordinates
+}
+
+TEST(Flight, PositionCrossesThePoleAndTheAntimeridian) {
+  const Flight pole = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 89, "lon": 0}},
+                      {"time": 2, "camera": {"lat": 89, "lon": 180}}])"),
+                                    "f.json");
+  EXPECT_NEAR(*pole.sample(1.0).lat, 90.0, 1e-9);  // over the pole, not around it at 89
+  const Flight date_line =
+      Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 179}},
+                      {"time": 1, "camera": {"lat": 0, "lon": -179}}])"),
+                    "f.json");
+  for (int i = 0; i <= 100; ++i) {
+    const FlightValues v = date_line.sample(i / 100.0);
+    EXPECT_GE(std::fabs(*v.lon), 179.0 - 1e-9) << i;
+    EXPECT_NEAR(*v.lat, 0.0, 1e-9) << i;
+  }
+  EXPECT_NEAR(*date_line.sample(0.5).lon, 180.0, 1e-9);
+  EXPECT_EQ(flight_error(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 0}},
+                      {"time": 1, "camera": {"lat": 0.5, "lon": 180}}])")),
+            "f.json: keyframes[1].camera: expected a position at most 179 degrees of arc from "
+            "keyframes[0]'s (the great circle between antipodes is undefined), got 179.5 degrees");
+}
+
+TEST(Flight, PositionIsC1AtInnerKeysAndStopsWithoutOvershoot) {
+  // A turn at 10 s (north, then north-east), a stop from 20 to 25 s, and on.
+  const Flight f = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 40, "lon": 10}},
+                      {"time": 10, "camera": {"lat": 41, "lon": 10}},
+                      {"time": 20, "camera": {"lat": 41.8, "lon": 11.5}},
+                      {"time": 25, "camera": {"lat": 41.8, "lon": 11.5}},
+                      {"time": 30, "camera": {"lat": 41.3, "lon": 12}}])"),
+                                 "f.json");
+  const auto at = [&](double t) {
+    const FlightValues v = f.sample(t);
+    return unit_of(*v.lat, *v.lon);
+  };
+  // The velocity (rad/s) just before and just after each inner key agree, to the differences'
+  // O(h) against the path's speeds of about 2e-3 rad/s (a kink would differ by about that).
+  const double h = 1e-4;
+  constexpr double kSpeed = 1e-3;  // rad/s
+  for (const double key : {10.0, 20.0, 25.0}) {
+    const auto p = at(key), before = at(key - h), after = at(key + h);
+    std::array<double, 3> v_in, v_out;
+    for (int k = 0; k < 3; ++k) {
+      v_in[k] = (p[k] - before[k]) / h;
+      v_out[k] = (after[k] - p[k]) / h;
+    }
+    const double speed = std::sqrt(dot(v_out, v_out)) + std::sqrt(dot(v_in, v_in));
+    std::array<double, 3> d{v_out[0] - v_in[0], v_out[1] - v_in[1], v_out[2] - v_in[2]};
+    EXPECT_LE(std::sqrt(dot(d, d)), 1e-3 * std::max(speed, kSpeed)) << key;
+  }
+  // The stop: still from 20 to 25 s, and never beyond the stop's point on the way there.
+  const auto stop = unit_of(41.8, 11.5), previous = unit_of(41, 10);
+  for (double t = 20.0; t <= 25.0; t += 0.25) EXPECT_LT(arc(at(t), stop), 1e-12) << t;
+  for (double t = 10.0; t <= 20.0; t += 0.05)
+    EXPECT_LE(arc(previous, at(t)), arc(previous, stop) + 1e-12) << t;
+  // A key given as latitude alone keeps the channels apart, as before (the path is then not on
+  // great circles): half way between (20, -150) and (45, -85) at the mean longitude.
+  const Flight apart =
+      Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 20, "lon": -150}},
+                      {"time": 30, "camera": {"lat": 30}},
+                      {"time": 60, "camera": {"lat": 45, "lon": -85}}])"),
+                    "f.json");
+  EXPECT_NEAR(*apart.sample(30.0).lon, -117.5, 1e-9);
 }
 
 TEST(Flight, NaNTimeGivesTheFirstKeys) {

@@ -5,7 +5,10 @@
 //
 // Interpolation is per channel (each of camera.lat, .lon, .height, .heading, .pitch, .roll,
 // .fov_y, sun.zenith, .azimuth, .utc, image.exposure and the scene's time has its own keys: the
-// keyframes that give it). Every numeric
+// keyframes that give it), but for the camera's position where the keyframes give latitude and
+// longitude together: then it follows great circles (the sphere of geodetic latitude and
+// longitude), a C1 spherical Hermite curve through the keys, exactly the great circle at an even
+// pace between two of them, without overshoot where the camera stops. Every numeric
 // channel is a monotone cubic Hermite spline (Fritsch-Carlson, the "PCHIP" of MATLAB and SciPy):
 // C1 in time, exact at the keys, and never outside the range of its two neighbouring keys, so a
 // camera never overshoots a keyframe (below the sea, past the pole, beyond straight down). A
@@ -22,9 +25,11 @@
 // gives no scene_time runs it at rate 1 from the base scene's `time`.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "thalassa/engine/scene.hpp"
@@ -169,6 +174,15 @@ class Flight {
   std::vector<std::vector<double>> key_times_, key_values_;  // per channel, as given
   std::vector<double> utc_times_, utc_seconds_;              // sun.utc keys
   std::vector<double> clock_times_, clock_values_;           // scene_time keys, s
+  // The camera's position along great circles, used where every keyframe that gives
+  // camera.lat or camera.lon gives both (docs/flight.md): per key its time (s), the unit vector
+  // of its latitude and longitude, and the path's velocity there (rad/s, tangent to the sphere).
+  bool great_circles_ = false;
+  std::vector<double> position_times_;
+  std::vector<std::array<double, 3>> position_dirs_, position_velocities_;
+  void build_position_path();
+  // The position at time t strictly between two position keys: latitude and longitude, degrees.
+  std::pair<double, double> position_between(double t) const;
 };
 
 // The embedded default flight's JSON text.
