@@ -150,6 +150,7 @@ Vec3 direction_of(double lat, double lon) {
 
 // The tangent at unit p toward unit q whose length is their arc (rad): the sphere's log map.
 Vec3 log_map(const Vec3& p, const Vec3& q) {
+  if (p == q) return Vec3(0.0);  // exactly: a held point stays where it is
   const double c = glm::dot(p, q);
   const Vec3 w = q - c * p;
   const double sine = glm::length(w);
@@ -596,10 +597,12 @@ void Flight::build_position_path() {
   position_dirs_.clear();
   position_velocities_.clear();
   if (!great_circles_) return;
+  position_lat_lon_.clear();
   std::vector<Vec3> p;
   for (const FlightKeyframe& k : keyframes_) {
     if (!k.values.lat) continue;
     position_times_.push_back(k.time);
+    position_lat_lon_.push_back({*k.values.lat, wrap_angle(*k.values.lon, -180.0, true)});
     p.push_back(direction_of(*k.values.lat, *k.values.lon));
   }
   const std::vector<double>& t = position_times_;
@@ -634,6 +637,11 @@ std::pair<double, double> Flight::position_between(double t) const {
   // velocity at each end is the key's, and between two keys on one great circle whose
   // velocities are its secant's, it is that great circle at an even pace.
   const Vec3 b0 = vec(position_dirs_[i]), b3 = vec(position_dirs_[i + 1]);
+  // Held between two keyframes at one place: that place's own latitude and longitude (the unit
+  // vector's round trip would move it by 1e-14 degrees).
+  if (b0 == b3 && vec(position_velocities_[i]) == Vec3(0.0) &&
+      vec(position_velocities_[i + 1]) == Vec3(0.0))
+    return position_lat_lon_[i];
   const Vec3 b1 = exp_map(b0, vec(position_velocities_[i]) * (h / 3.0));
   const Vec3 b2 = exp_map(b3, -vec(position_velocities_[i + 1]) * (h / 3.0));
   const Vec3 q0 = slerp(b0, b1, u), q1 = slerp(b1, b2, u), q2 = slerp(b2, b3, u);

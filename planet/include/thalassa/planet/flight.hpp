@@ -180,6 +180,7 @@ class Flight {
   bool great_circles_ = false;
   std::vector<double> position_times_;
   std::vector<std::array<double, 3>> position_dirs_, position_velocities_;
+  std::vector<std::pair<double, double>> position_lat_lon_;  // the keys' own, degrees
   void build_position_path();
   // The position at time t strictly between two position keys: latitude and longitude, degrees.
   std::pair<double, double> position_between(double t) const;
