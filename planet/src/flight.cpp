@@ -142,6 +142,9 @@ constexpr double kRadian = 3.14159265358979323846 / 180.0;
 // Two consecutive position keys may be at most this far apart (degrees of arc): the great circle
 // between antipodes is undefined, and near them its direction is lost in rounding.
 constexpr double kMaxKeyArc = 179.0;
+// A key's distance from the polar axis (unit sphere) under which it counts as at a pole, where
+// the east direction is lost: 1e-9 rad, 6 mm.
+constexpr double kPoleTolerance = 1e-9;
 
 Vec3 direction_of(double lat, double lon) {
   const double phi = lat * kRadian, lambda = lon * kRadian;
@@ -163,6 +166,11 @@ Vec3 exp_map(const Vec3& p, const Vec3& v) {
   const double arc = glm::length(v);
   if (!(arc > 0.0)) return p;
   return glm::normalize(std::cos(arc) * p + std::sin(arc) / arc * v);
+}
+
+// The arc between unit a and b, radians (antipodes included, where log_map has no direction).
+double arc_between(const Vec3& a, const Vec3& b) {
+  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
 }
 
 // The great circle from a to b at fraction u of its arc.
@@ -453,14 +461,13 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
       if (before) {
         const FlightValues& w = f.keyframes_[*before].values;
         const double arc =
-            glm::length(log_map(direction_of(*w.lat, *w.lon), direction_of(*v.lat, *v.lon))) /
-            kRadian;
+            arc_between(direction_of(*w.lat, *w.lon), direction_of(*v.lat, *v.lon)) / kRadian;
         if (arc > kMaxKeyArc)
           fail(source, "keyframes[" + std::to_string(i) + "].camera",
                "a position at most " + number_text(kMaxKeyArc) + " degrees of arc from keyframes[" +
                    std::to_string(*before) +
                    "]'s (the great circle between antipodes is undefined)",
-               number_text(std::round(arc * 1e3) / 1e3) + " degrees");
+               number_text(std::ceil(arc * 1e3) / 1e3) + " degrees");  // rounded up
       }
       before = i;
     }
@@ -586,18 +593,22 @@ void Flight::build_channels() {
 }
 
 // The position's spherical Hermite curve: at each key its velocity, the analogue of the
-// channels' monotone cubic (docs/flight.md): inside, the weighted mean of the velocities in
-// from the key before and out to the key after (as the great circles' secants, tangent at the
-// key), zero where they differ by 90 degrees or more (the camera turns back or stops there) and
-// at most three times the slower of them; at an end, the secant's velocity, or zero where the
-// path is held beyond that key within the flight (it eases in or out, as the channels do).
+// channels' monotone cubic (docs/flight.md). Inside, from the velocities in from the key before
+// and out to the key after (the great circles' secants, tangent at the key): their east and
+// north parts each take the channels' rule (Fritsch & Butland's weighted harmonic mean where
+// the two agree in sign, zero where they do not), so that the path turns at a key as the
+// latitude and longitude channels did, without passing its keys' latitudes or longitudes
+// where a leg is slow after a fast one (a weighted arithmetic mean there carried the fast leg's
+// direction 30 km past the next key). At a pole, where east is undefined, the parts along the
+// bisector of the two and across it. At an end, the secant's velocity, or zero where the path is
+// held beyond that key within the flight (it eases in or out, as the channels do).
 void Flight::build_position_path() {
   great_circles_ = positions_paired(keyframes_);
   position_times_.clear();
   position_dirs_.clear();
   position_velocities_.clear();
-  if (!great_circles_) return;
   position_lat_lon_.clear();
+  if (!great_circles_) return;
   std::vector<Vec3> p;
   for (const FlightKeyframe& k : keyframes_) {
     if (!k.values.lat) continue;
@@ -613,11 +624,28 @@ void Flight::build_position_path() {
     const auto in = [&](std::size_t i) { return -log_map(p[i], p[i - 1]) / (t[i] - t[i - 1]); };
     for (std::size_t i = 1; i + 1 < n; ++i) {
       const Vec3 a = in(i), b = out(i);
-      if (!(glm::dot(a, b) > 0.0)) continue;
       const double h0 = t[i] - t[i - 1], h1 = t[i + 1] - t[i];
-      m[i] = (h1 * a + h0 * b) / (h0 + h1);
-      const double most = 3.0 * std::min(glm::length(a), glm::length(b));
-      if (glm::length(m[i]) > most) m[i] *= most / glm::length(m[i]);
+      // The rates' weighted harmonic mean, as MonotoneCubic's inside (at most three times the
+      // smaller), zero where they differ in sign.
+      const auto rate = [&](double x, double y) {
+        if (!(x * y > 0.0)) return 0.0;
+        const double w1 = 2.0 * h1 + h0, w2 = h1 + 2.0 * h0;
+        return (w1 + w2) / (w1 / x + w2 / y);
+      };
+      Vec3 east = glm::cross(Vec3(0.0, 0.0, 1.0), p[i]);
+      if (glm::length(east) > kPoleTolerance) {
+        east = glm::normalize(east);
+      } else {
+        // At a pole: along the bisector of the two secants and across it.
+        const double la = glm::length(a), lb = glm::length(b);
+        if (!(la > 0.0) || !(lb > 0.0)) continue;  // a stop: zero
+        const Vec3 bisector = a / la + b / lb;
+        if (!(glm::length(bisector) > 0.0)) continue;  // turning straight back
+        east = glm::normalize(bisector);
+      }
+      const Vec3 north = glm::cross(p[i], east);
+      m[i] = rate(glm::dot(a, east), glm::dot(b, east)) * east +
+             rate(glm::dot(a, north), glm::dot(b, north)) * north;
     }
     const double last_frame = frame_time(frame_count_ - 1);
     if (!(t.front() > 0.0)) m[0] = out(0);
@@ -736,6 +764,7 @@ void Flight::set(std::string_view assignment) {
 
 FlightValues Flight::sample(double t) const {
   FlightValues out;
+  std::optional<std::pair<double, double>> position;  // on great circles, between two keys
   for (std::size_t c = 0; c < channels().size(); ++c) {
     const Channel& channel = channels()[c];
     const std::vector<double>& times = key_times_[c];
@@ -753,8 +782,8 @@ FlightValues Flight::sample(double t) const {
         value = wrap_angle(value, channel.lo, channel.upper_closed);
     } else if (great_circles_ &&
                (channel.member == &FlightValues::lat || channel.member == &FlightValues::lon)) {
-      const auto [lat, lon] = position_between(t);
-      value = channel.member == &FlightValues::lat ? lat : lon;
+      if (!position) position = position_between(t);  // once for both
+      value = channel.member == &FlightValues::lat ? position->first : position->second;
     } else {
       value = from_space(channel, splines_[c](t));
       if (channel.kind == ChannelKind::LogHeight || channel.kind == ChannelKind::Log) {

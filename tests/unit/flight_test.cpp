@@ -596,6 +596,66 @@ TEST(Flight, PositionCrossesThePoleAndTheAntimeridian) {
                       {"time": 1, "camera": {"lat": 0.5, "lon": 180}}])")),
             "f.json: keyframes[1].camera: expected a position at most 179 degrees of arc from "
             "keyframes[0]'s (the great circle between antipodes is undefined), got 179.5 degrees");
+  // Exact antipodes, where the secant has no direction at all.
+  EXPECT_EQ(flight_error(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 30}},
+                      {"time": 10, "camera": {"lat": 0, "lon": -150}}])")),
+            "f.json: keyframes[1].camera: expected a position at most 179 degrees of arc from "
+            "keyframes[0]'s (the great circle between antipodes is undefined), got 180 degrees");
+  // Through a keyframe at the pole: along the meridian, at an even pace on both sides.
+  const Flight over = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 89, "lon": 0}},
+                      {"time": 1, "camera": {"lat": 90, "lon": 0}},
+                      {"time": 2, "camera": {"lat": 89, "lon": 180}}])"),
+                                    "f.json");
+  EXPECT_NEAR(*over.sample(0.5).lat, 89.5, 1e-9);
+  EXPECT_NEAR(*over.sample(0.5).lon, 0.0, 1e-9);
+  EXPECT_NEAR(*over.sample(1.5).lat, 89.5, 1e-9);
+  EXPECT_NEAR(*over.sample(1.5).lon, 180.0, 1e-9);
+}
+
+TEST(Flight, PositionDoesNotOvershootWhereASlowLegFollowsAFastOne) {
+  // North at 1 degree a second, then 10 s to a point 0.17 degrees further north and 1 east: the
+  // camera neither passes that point's latitude nor leaves the leg's longitudes (a weighted
+  // arithmetic mean of the two legs' velocities carried it 0.29 degrees north of both).
+  const Flight f = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 0}},
+                      {"time": 1, "camera": {"lat": 1, "lon": 0}},
+                      {"time": 11, "camera": {"lat": 1.17, "lon": 1}}])"),
+                                 "f.json");
+  // A slow leg east between a fast one north and a fast one south: it stays at 1 N.
+  const Flight c = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 0.02}},
+                      {"time": 1, "camera": {"lat": 1, "lon": 0.02}},
+                      {"time": 11, "camera": {"lat": 1, "lon": 1}},
+                      {"time": 12, "camera": {"lat": 0, "lon": 1}}])"),
+                                 "f.json");
+  // The great circles between the keys bow north of their latitudes, by 3.7e-5 degrees for the
+  // slow leg east; the path takes the legs' rates at the keys, their north parts too, and may
+  // pass that by a few times (1.0001 N measured). 2e-4 degrees is 22 m; the fast leg's
+  // direction carried on overshot by 0.29 and 0.73 degrees.
+  constexpr double kBow = 2e-4;
+  for (double t = 1.0; t <= 11.0; t += 0.01) {
+    const FlightValues v = f.sample(t);
+    EXPECT_LE(*v.lat, 1.17 + kBow) << t;
+    EXPECT_GE(*v.lat, 1.0 - kBow) << t;
+    EXPECT_GE(*v.lon, -kBow) << t;
+    EXPECT_LE(*v.lon, 1.0 + kBow) << t;
+    const FlightValues w = c.sample(t);
+    EXPECT_LE(*w.lat, 1.0 + kBow) << t;
+    EXPECT_GE(*w.lon, 0.02 - kBow) << t;
+    EXPECT_LE(*w.lon, 1.0 + kBow) << t;
+  }
+}
+
+TEST(Flight, PositionEasesIntoAHoldWithinTheFlightAndFollowsSetFps) {
+  // Keys at 0 and 10 s, the flight 10.01 s long: at 24 fps its last frame is at 10 s, the key's,
+  // and the pace is even; at 100 fps it runs on to 10.01 s, the position is held after 10 s and
+  // eases into the hold (the Hermite curve with a zero end velocity: 0.625 of the arc half way).
+  Flight f = Flight::parse(flight_text(R"([{"time": 0, "camera": {"lat": 0, "lon": 0}},
+                      {"time": 10, "camera": {"lat": 0, "lon": 20}}])",
+                                       R"("duration": 10.01)"),
+                           "f.json");
+  EXPECT_NEAR(*f.sample(5.0).lon, 10.0, 1e-9);
+  f.set_fps(100.0);
+  EXPECT_NEAR(*f.sample(5.0).lon, 12.5, 1e-9);
+  EXPECT_EQ(f.frame_scene(f.frame_count() - 1).camera.lon, 20.0);
 }
 
 TEST(Flight, PositionIsC1AtInnerKeysAndStopsWithoutOvershoot) {

@@ -7,8 +7,9 @@
 // .fov_y, sun.zenith, .azimuth, .utc, image.exposure and the scene's time has its own keys: the
 // keyframes that give it), but for the camera's position where the keyframes give latitude and
 // longitude together: then it follows great circles (the sphere of geodetic latitude and
-// longitude), a C1 spherical Hermite curve through the keys, exactly the great circle at an even
-// pace between two of them, without overshoot where the camera stops. Every numeric
+// longitude), a C1 spherical Hermite curve through the keys whose velocity at a key takes the
+// channels' rule below in its east and north parts (it stops where the camera holds a place),
+// exactly the great circle at an even pace between two keys that span the flight. Every numeric
 // channel is a monotone cubic Hermite spline (Fritsch-Carlson, the "PCHIP" of MATLAB and SciPy):
 // C1 in time, exact at the keys, and never outside the range of its two neighbouring keys, so a
 // camera never overshoots a keyframe (below the sea, past the pole, beyond straight down). A
