@@ -288,13 +288,18 @@ void key_callback(GLFWwindow* window, int key, int scancode, int action, int mod
   if (key == GLFW_KEY_ESCAPE || key == GLFW_KEY_Q) g_presses.quit = true;
 }
 
+// The file beside a screenshot's EXR (NAME.exr, checked when parsed) with `extension`.
+std::string beside_screenshot(const std::string& exr, const char* extension) {
+  return exr.substr(0, exr.size() - 4) + extension;
+}
+
 // Writes the frame as EXR, PNG and the scene file that draws it again (`thalassa render
 // NAME.json`); the messages go to stderr and the panel.
 std::string write_screenshot(const std::string& exr, const Renderer& renderer,
                              const ViewedScene& viewed) {
   const Image image = renderer.image();
-  const std::string png = exr.substr(0, exr.size() - 4) + ".png";
-  const std::string json = exr.substr(0, exr.size() - 4) + ".json";
+  const std::string png = beside_screenshot(exr, ".png");
+  const std::string json = beside_screenshot(exr, ".json");
   if (const std::string problem = nonfinite_pixels(image); !problem.empty())
     return "screenshot not written: " + problem;
   PendingOutputs outputs;
@@ -373,7 +378,7 @@ void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& vie
     ImGui::Checkbox("time runs", &time_running);
     ImGui::SameLine();
     drag("rate", time_rate, 0.05, 0.0, 100.0, "x%.2f");
-    drag("time", next.time, 0.1, 0.0, 1e12, "%.2f s");
+    drag("time", next.time, 0.1, 0.0, kSceneMaxTime, "%.2f s");
   }
   if (playback.flight && ImGui::CollapsingHeader("flight", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Checkbox("play", &playback.playing);
@@ -473,8 +478,7 @@ int run_view(const ViewArgs& args) {
   if (!args.record.empty()) {
     // The screenshot writes its scene file beside its EXR: the flight must not be that file.
     const std::string screenshot_json =
-        args.screenshot.empty() ? ""
-                                : args.screenshot.substr(0, args.screenshot.size() - 4) + ".json";
+        args.screenshot.empty() ? "" : beside_screenshot(args.screenshot, ".json");
     std::string problem = check_output("--record", args.record, ".json");
     if (problem.empty()) problem = check_distinct("--record", args.record, {screenshot_json});
     if (!problem.empty()) {
@@ -609,7 +613,7 @@ int run_view(const ViewArgs& args) {
       next.sun.utc =
           moved_utc(*next.sun.utc, keys.sun_azimuth * kSunTimeRate * keys.motion.boost * dt);
     }
-    if (time_running) next.time = std::min(next.time + dt * time_rate, 1e12);
+    if (time_running) next.time = std::min(next.time + dt * time_rate, kSceneMaxTime);
     bool screenshot = presses.screenshot;
     bool record = presses.toggle_record;
     if (panel)

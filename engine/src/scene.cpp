@@ -211,7 +211,8 @@ const std::vector<KeyDesc>& key_table() {
           "A UTC instant that places the sun for the camera's position; excludes sun.zenith and "
           "sun.azimuth."),
 
-      number<&S::time>("time", {0, 1e12}, "s", "0", "Simulation time, which moves the waves."),
+      number<&S::time>("time", {0, kSceneMaxTime}, "s", "0",
+                       "Simulation time, which moves the waves."),
 
       enumeration<&S::planet, &PlanetSettings::shape>(
           "planet.shape", "\"wgs84\"", "Shape of the planet: the WGS84 ellipsoid or a sphere."),

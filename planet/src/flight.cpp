@@ -97,8 +97,6 @@ struct Channel {
 };
 
 constexpr double kFullTurn = 360.0;  // degrees
-// The largest scene `time`, s (scene files' range, engine/src/scene.cpp).
-constexpr double kMaxSceneTime = 1e12;
 
 // The numeric channels; sun.utc and the scene's time are handled apart (linear in time).
 const std::vector<Channel>& channels() {
@@ -514,22 +512,23 @@ Flight Flight::parse(std::string_view json_text, std::string_view source,
          utc_animated ? "sun.utc" : "sun.zenith/sun.azimuth");
   }
   f.base_time_ = base.build().time;
-  if (!f.clock_times_.empty() && f.clock_values_.front() < f.clock_times_.front()) {
-    std::size_t first = 0;
-    while (!f.keyframes_[first].values.scene_time) ++first;
-    fail(source, "keyframes[" + std::to_string(first) + "].scene_time",
-         "at least its keyframe's time (" + number_text(f.clock_times_.front()) +
-             " s): before its first key the scene's time runs at rate 1, and may not be negative "
-             "at the flight's start",
-         number_text(f.clock_values_.front()));
-  }
   if (!f.clock_times_.empty()) {
+    // The keyframes that give the first and the last scene_time, for messages.
+    std::size_t first = 0, last = f.keyframes_.size() - 1;
+    while (!f.keyframes_[first].values.scene_time) ++first;
+    while (!f.keyframes_[last].values.scene_time) --last;
+    if (f.clock_values_.front() < f.clock_times_.front())
+      fail(source, "keyframes[" + std::to_string(first) + "].scene_time",
+           "at least its keyframe's time (" + number_text(f.clock_times_.front()) +
+               " s): before its first key the scene's time runs at rate 1, and may not be "
+               "negative at the flight's start",
+           number_text(f.clock_values_.front()));
     const double last_frame = f.frame_time(f.frame_count_ - 1);
-    if (f.last_scene_time(last_frame) > kMaxSceneTime)
-      fail(source, "keyframes[" + std::to_string(f.last_clock_key()) + "].scene_time",
-           "at most " + number_text(kMaxSceneTime - (last_frame - f.clock_times_.back())) +
+    if (f.last_scene_time(last_frame) > kSceneMaxTime)
+      fail(source, "keyframes[" + std::to_string(last) + "].scene_time",
+           "at most " + number_text(kSceneMaxTime - (last_frame - f.clock_times_.back())) +
                " (s): after its last key the scene's time runs at rate 1, and may not pass " +
-               number_text(kMaxSceneTime) + " s by the flight's last frame (" +
+               number_text(kSceneMaxTime) + " s by the flight's last frame (" +
                number_text(last_frame) + " s)",
            number_text(f.clock_values_.back()));
   }
@@ -685,12 +684,6 @@ double Flight::last_scene_time(double last_frame) const {
   return clock_values_.back() + std::max(0.0, last_frame - clock_times_.back());
 }
 
-std::size_t Flight::last_clock_key() const {
-  std::size_t last = keyframes_.size() - 1;
-  while (!keyframes_[last].values.scene_time) --last;
-  return last;
-}
-
 void Flight::check_ends() const {
   scene_at(0.0);
   scene_at(frame_time(frame_count_ - 1));
@@ -716,9 +709,9 @@ void Flight::set_fps(double fps) {
     throw SceneError("--fps: expected at most " + std::to_string(kFlightMaxFrames) +
                      " frames (duration x fps + 1), got " + number_text(frames) + " frames");
   const double last_frame = (frames - 1.0) / fps;
-  if (last_scene_time(last_frame) > kMaxSceneTime)
+  if (last_scene_time(last_frame) > kSceneMaxTime)
     throw SceneError("--fps: expected a rate whose last frame (at " + number_text(last_frame) +
-                     " s) keeps the scene's time at most " + number_text(kMaxSceneTime) +
+                     " s) keeps the scene's time at most " + number_text(kSceneMaxTime) +
                      " s, got " + number_text(fps) + " (it would be " +
                      number_text(last_scene_time(last_frame)) + " s)");
   const double old_fps = fps_;

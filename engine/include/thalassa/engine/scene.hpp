@@ -144,6 +144,9 @@ struct CalmAreaSettings {
   bool operator==(const CalmAreaSettings&) const = default;
 };
 
+// The largest scene `time`, s: the key's range is [0, kSceneMaxTime].
+inline constexpr double kSceneMaxTime = 1e12;
+
 struct Scene {
   ImageSettings image;
   CameraSettings camera;

@@ -158,8 +158,6 @@ class Flight {
   void check_ends() const;
   // The scene's time at the last frame, at `last_frame` s into the flight (the clock's greatest).
   double last_scene_time(double last_frame) const;
-  // The index of the last keyframe that gives scene_time (there must be one).
-  std::size_t last_clock_key() const;
 
   std::string source_;
   std::vector<Step> steps_;
