@@ -108,6 +108,17 @@ struct ViewArgs {
   std::string flight;      // a flight file played in the window; empty: none
 };
 
+struct SeaArgs {
+  std::string scene;            // empty: the embedded default scene
+  std::vector<std::string> at;  // "LAT,LON" each; empty: the camera's nadir
+  std::optional<double> time;   // s; none: the scene's time (or --times)
+  std::string times;            // "START:STOP:STEP", s; empty: one time
+  double footprint = 0.0;       // m; 0: every wave
+  std::string anchor;           // "LAT,LON" of the waves' chart; empty: the render's
+  std::vector<std::string> sets;
+  std::string output;  // empty: standard output
+};
+
 struct InfoArgs {
   std::string backend;
 };
@@ -116,11 +127,13 @@ void add_render_command(CLI::App& app, RenderArgs& args);
 void add_sky_command(CLI::App& app, SkyArgs& args);
 void add_fly_command(CLI::App& app, FlyArgs& args);
 void add_info_command(CLI::App& app, InfoArgs& args);
+void add_sea_command(CLI::App& app, SeaArgs& args);
 void add_validate_command(CLI::App& app, ValidateArgs& args);
 int run_render(const RenderArgs& args);
 int run_sky(const SkyArgs& args);
 int run_fly(const FlyArgs& args);
 int run_info(const InfoArgs& args);
+int run_sea(const SeaArgs& args);
 int run_validate(const ValidateArgs& args);
 // The interactive viewer (apps/view_command.cpp): built with GLFW and Dear ImGui only
 // (THALASSA_HAVE_VIEW).

@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   FlyArgs fly_args;
   ValidateArgs validate_args;
   InfoArgs info_args;
+  SeaArgs sea_args;
 #ifdef THALASSA_HAVE_VIEW
   ViewArgs view_args;
 #endif
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
   add_fly_command(app, fly_args);
   add_validate_command(app, validate_args);
   add_info_command(app, info_args);
+  add_sea_command(app, sea_args);
 #ifdef THALASSA_HAVE_VIEW
   add_view_command(app, view_args);
 #endif
@@ -41,6 +43,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("fly")) return run_fly(fly_args);
     if (app.got_subcommand("validate")) return run_validate(validate_args);
     if (app.got_subcommand("info")) return run_info(info_args);
+    if (app.got_subcommand("sea")) return run_sea(sea_args);
 #ifdef THALASSA_HAVE_VIEW
     if (app.got_subcommand("view")) return run_view(view_args);
 #endif

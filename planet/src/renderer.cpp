@@ -882,4 +882,6 @@ RenderStats Renderer::stats() const {
 
 const Scene& Renderer::scene() const { return impl_->scene; }
 
+SeaState Renderer::sea_state() const { return SeaState(impl_->scene, impl_->nadir.wave_anchor); }
+
 }  // namespace thalassa

@@ -1149,8 +1149,6 @@ TEST_F(Cli, HdrPhotographLightsTheScene) {
   EXPECT_FALSE(fs::exists(dir_ / "bad.exr"));
 }
 
-}  // namespace
-
 // --- thalassa fly ------------------------------------------------------------------------------
 
 // A short descent: 5 frames at 4 frames per second, 200 m to 2 m, turning to the horizon.
@@ -1334,3 +1332,79 @@ TEST_F(Cli, FlyVideoWithoutFfmpegExitsWith1BeforeRendering) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_FALSE(fs::exists(dir_ / "flight.mp4"));
 }
+
+// ---- thalassa sea ----
+
+// The rows of a CSV file: the header's names, then each row's fields.
+std::vector<std::map<std::string, std::string>> read_csv(const fs::path& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::vector<std::string> names;
+  std::vector<std::map<std::string, std::string>> rows;
+  while (std::getline(in, line)) {
+    std::vector<std::string> fields;
+    std::stringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+    if (names.empty()) {
+      names = fields;
+      continue;
+    }
+    std::map<std::string, std::string> row;
+    for (std::size_t i = 0; i < fields.size() && i < names.size(); ++i) row[names[i]] = fields[i];
+    EXPECT_EQ(fields.size(), names.size()) << line;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST_F(Cli, SeaWritesTheSurfaceAtPointsAndTimesAsCsv) {
+  Result r = run("sea --at 20,-150 --at 20.0001,-150 --times 0:2:0.5 -o series.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = read_csv(dir_ / "series.csv");
+  ASSERT_EQ(rows.size(), 10u);  // 5 times, 2 points
+  double lowest = 1e9, highest = -1e9;
+  for (const auto& row : rows) {
+    for (const char* key : {"height_m", "normal_up", "velocity_up_m_s", "height_rate_m_s"})
+      EXPECT_TRUE(std::isfinite(std::stod(row.at(key)))) << key;
+    EXPECT_EQ(row.at("converged"), "1");
+    EXPECT_EQ(row.at("calm_scale"), "1");
+    const double height = std::stod(row.at("height_m"));
+    lowest = std::min(lowest, height);
+    highest = std::max(highest, height);
+    EXPECT_GT(std::stod(row.at("normal_up")), 0.5);
+  }
+  EXPECT_GT(highest - lowest, 0.05);  // the default sea (10 m/s) moves
+  // One time on its own gives that time's row of the series.
+  r = run("sea --at 20.0001,-150 --time 1.5 -o one.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto one = read_csv(dir_ / "one.csv");
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0], rows[7]);
+  // A calm area of scale 0 over the point stills it; a footprint longer than every wave too.
+  r =
+      run("sea --at 20,-150 -o calm.csv --set 'calm_areas=[{\"scale\": 0, \"fade\": 10, "
+          "\"polygon\": [{\"lat\": 19.99, \"lon\": -150.01}, {\"lat\": 19.99, \"lon\": -149.99}, "
+          "{\"lat\": 20.01, \"lon\": -150}]}]'");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_csv(dir_ / "calm.csv")[0].at("height_m"), "0");
+  ASSERT_EQ(run("sea --at 20,-150 --footprint 100 -o long.csv").status, 0);
+  EXPECT_EQ(read_csv(dir_ / "long.csv")[0].at("height_m"), "0");
+}
+
+TEST_F(Cli, SeaRefusesBadPlacesTimesAndOutputs) {
+  expect_invalid(run("sea --at 91,0 -o a.csv"), {"--at 91,0", "LAT in [-90, 90]"});
+  expect_invalid(run("sea --at 20 -o a.csv"), {"--at 20", "LAT,LON"});
+  expect_invalid(run("sea --at 20,x -o a.csv"), {"--at 20,x"});
+  expect_invalid(run("sea --times 5:1:1 -o a.csv"), {"--times 5:1:1", "START <= STOP"});
+  expect_invalid(run("sea --times 0:1:0 -o a.csv"), {"--times", "STEP > 0"});
+  expect_invalid(run("sea --times 0:1e9:1e-3 -o a.csv"), {"--times", "at most 1e7"});
+  expect_invalid(run("sea --time -1 -o a.csv"), {"--time -1", "[0, 1e12]"});
+  expect_invalid(run("sea --time 1 --times 0:1:1 -o a.csv"), {"--time and --times"});
+  expect_invalid(run("sea --footprint -2 -o a.csv"), {"--footprint -2"});
+  expect_invalid(run("sea --anchor 1,2,3 -o a.csv"), {"--anchor 1,2,3"});
+  expect_invalid(run("sea -o a.txt"), {"-o", ".csv"});
+  expect_invalid(run("sea --set ocean.wind_speed=99 -o a.csv"), {"ocean.wind_speed"});
+  EXPECT_EQ(files(), std::vector<std::string>{});
+}
+
+}  // namespace

@@ -174,6 +174,15 @@ TEST(RendererSetScene, KeepsTheWavesAnchorWithinItsDistance) {
   EXPECT_EQ(moved_image.rgba, drawn_alone(*context, moved, anchor).rgba);
   // A new Renderer there charts the waves from its own nearest point: other waves.
   EXPECT_NE(moved_image.rgba, drawn_alone(*context, moved).rgba);
+  // The sea the renderer answers for on the CPU is the one it draws: its kept anchor's, at its
+  // scene's time, not a new SeaState's of the moved scene (planet/sea_state.hpp).
+  {
+    const SeaState sea = renderer.sea_state();
+    EXPECT_EQ(sea.wave_anchor().lon, anchor.lon);
+    const double lat = moved.camera.lat, lon = moved.camera.lon;
+    EXPECT_EQ(sea.at(lat, lon).height, SeaState(moved, anchor).at(lat, lon, moved.time).height);
+    EXPECT_NE(sea.at(lat, lon).height, SeaState(moved).at(lat, lon).height);
+  }
 
   // 167 km north: past the distance, the nearest lattice point.
   Scene far = first;

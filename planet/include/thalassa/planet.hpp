@@ -10,5 +10,6 @@
 #include "thalassa/planet/geodesy.hpp"
 #include "thalassa/planet/nadir_frame.hpp"
 #include "thalassa/planet/renderer.hpp"
+#include "thalassa/planet/sea_state.hpp"
 #include "thalassa/planet/ship_wake.hpp"
 #include "thalassa/planet/sky_export.hpp"

@@ -20,6 +20,7 @@
 #include "thalassa/ocean/method.hpp"
 #include "thalassa/ocean/scattered_sun_cache.hpp"
 #include "thalassa/planet/geodesy.hpp"
+#include "thalassa/planet/sea_state.hpp"
 
 namespace thalassa {
 
@@ -408,6 +409,11 @@ class Renderer {
 
   RenderStats stats() const;
   const Scene& scene() const;
+  // The sea this renderer draws, for queries on the CPU (planet/sea_state.hpp): the current
+  // scene in the chart of its waves' anchor (RenderStats::wave_anchor), which set_scene keeps
+  // while the camera stays near it. Builds the scene's wave set, wakes and calm areas (below a
+  // millisecond for the default scene); keep it while the scene stays.
+  SeaState sea_state() const;
 
  private:
   struct Impl;

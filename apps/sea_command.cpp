@@ -1,0 +1,181 @@
+// `thalassa sea`: the sea's surface at points and times as CSV (planet/sea_state.hpp), for a
+// buoy's record, a hull's motion or a comparison with wave measurements. No GL.
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "thalassa/thalassa.hpp"
+
+namespace thalassa::cli {
+namespace {
+
+// Rows a run may write (--at points times --times steps): 1e7 rows are about 2 GB of CSV.
+constexpr double kMaxRows = 1e7;
+
+// The whole of `text` as one finite number; false otherwise.
+bool parse_number(const std::string& text, double& value) {
+  try {
+    std::size_t used = 0;
+    value = std::stod(text, &used);
+    return used == text.size() && std::isfinite(value);
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+// `text` cut at each `separator` into `count` finite numbers; false otherwise.
+bool parse_numbers(const std::string& text, char separator, std::size_t count,
+                   std::vector<double>& values) {
+  values.clear();
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t to = text.find(separator, from);
+    double value = 0;
+    if (!parse_number(text.substr(from, to == std::string::npos ? to : to - from), value))
+      return false;
+    values.push_back(value);
+    if (to == std::string::npos) break;
+    from = to + 1;
+  }
+  return values.size() == count;
+}
+
+// "LAT,LON" (degrees) -> a place; nullopt for anything else or out of range.
+std::optional<Geodetic> parse_place(const std::string& text) {
+  std::vector<double> v;
+  if (!parse_numbers(text, ',', 2, v) || !(v[0] >= -90.0 && v[0] <= 90.0) ||
+      !(v[1] >= -180.0 && v[1] <= 180.0))
+    return std::nullopt;
+  return Geodetic{v[0], v[1], 0.0};
+}
+
+// "START:STOP:STEP" -> the times START, START + STEP, ... through STOP (STOP included when a
+// step lands within a millionth of a step of it); "" or an error naming the option.
+std::string parse_times(const std::string& text, std::vector<double>& times) {
+  std::vector<double> v;
+  if (!parse_numbers(text, ':', 3, v) || !(v[0] >= 0.0 && v[0] <= v[1] && v[1] <= kSceneMaxTime) ||
+      !(v[2] > 0.0))
+    return "--times " + text +
+           ": expected START:STOP:STEP, seconds, 0 <= START <= STOP <= 1e12, STEP > 0";
+  const double count = std::floor((v[1] - v[0]) / v[2] + 1e-6) + 1.0;
+  if (!(count <= kMaxRows))
+    return "--times " + text + ": expected at most 1e7 times, got " + format_number(count);
+  for (long long i = 0; i < static_cast<long long>(count); ++i) times.push_back(v[0] + v[2] * i);
+  return "";
+}
+
+std::string csv_number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+  return buffer;
+}
+
+}  // namespace
+
+void add_sea_command(CLI::App& app, SeaArgs& args) {
+  CLI::App* sea = app.add_subcommand(
+      "sea",
+      "Write the sea's surface (height, normal, water velocity, rate of rise) at points and "
+      "times as CSV, computed on the CPU as the renderer draws it (docs/sea_state.md)");
+  sea->add_option("scene", args.scene, "Scene file (JSON, see docs/scene.md)");
+  sea->add_option("--at", args.at, "LAT,LON in degrees; repeatable (default: the camera's nadir)")
+      ->allow_extra_args(false);
+  sea->add_option("--time", args.time, "Seconds on the scene's clock (default: the scene's time)");
+  sea->add_option("--times", args.times, "START:STOP:STEP, seconds: a time series");
+  sea->add_option("--footprint", args.footprint,
+                  "Metres: weigh each wave by w(N_min, N_max, wavelength / footprint) as the "
+                  "grid does, e.g. a hull's length (default 0: every wave)")
+      ->capture_default_str();
+  sea->add_option("--anchor", args.anchor,
+                  "LAT,LON of the waves' chart (default: the lattice point nearest the camera, "
+                  "as `render` takes it; `fly` takes the one under its last frame)");
+  sea->add_option("--set", args.sets, "Override a scene key: --set ocean.wind_speed=15")
+      ->allow_extra_args(false);
+  sea->add_option("-o,--output", args.output, "The CSV file (default: standard output)");
+}
+
+int run_sea(const SeaArgs& args) {
+  LoadedScene loaded;
+  try {
+    loaded = load_scene(args.scene, args.sets);
+  } catch (const SceneError& error) {
+    print_error(error.what());
+    return kExitInvalidInput;
+  }
+  const Scene& scene = loaded.scene;
+  const auto refuse = [](const std::string& message) {
+    print_error(message);
+    return kExitInvalidInput;
+  };
+  std::vector<std::pair<double, double>> points;
+  for (const std::string& text : args.at) {
+    const std::optional<Geodetic> place = parse_place(text);
+    if (!place)
+      return refuse("--at " + text +
+                    ": expected LAT,LON in degrees, LAT in [-90, 90], LON in "
+                    "[-180, 180]");
+    points.emplace_back(place->lat, place->lon);
+  }
+  if (points.empty()) points.emplace_back(scene.camera.lat, scene.camera.lon);
+  std::vector<double> times;
+  if (args.time && !args.times.empty()) return refuse("--time and --times: give one of them");
+  if (args.time) {
+    if (!(*args.time >= 0.0 && *args.time <= kSceneMaxTime))
+      return refuse("--time " + format_number(*args.time) + ": expected seconds in [0, 1e12]");
+    times.push_back(*args.time);
+  } else if (!args.times.empty()) {
+    const std::string problem = parse_times(args.times, times);
+    if (!problem.empty()) return refuse(problem);
+  } else {
+    times.push_back(scene.time);
+  }
+  if (double(times.size()) * double(points.size()) > kMaxRows)
+    return refuse("--at and --times: expected at most 1e7 rows, got " +
+                  format_number(double(times.size()) * double(points.size())));
+  if (!(args.footprint >= 0.0 && std::isfinite(args.footprint)))
+    return refuse("--footprint " + format_number(args.footprint) + ": expected metres >= 0");
+  std::optional<Geodetic> anchor;
+  if (!args.anchor.empty()) {
+    anchor = parse_place(args.anchor);
+    if (!anchor)
+      return refuse("--anchor " + args.anchor +
+                    ": expected LAT,LON in degrees, LAT in [-90, "
+                    "90], LON in [-180, 180]");
+  }
+  if (!args.output.empty()) {
+    const std::string problem = check_output("-o", args.output, ".csv");
+    if (!problem.empty()) return refuse(problem);
+  }
+
+  const SeaState sea(scene, anchor);
+  std::ostringstream csv;
+  csv << "time_s,lat_deg,lon_deg,height_m,normal_east,normal_north,normal_up,velocity_east_m_s,"
+         "velocity_north_m_s,velocity_up_m_s,height_rate_m_s,rest_east_m,rest_north_m,"
+         "calm_scale,wakes,converged\n";
+  for (double time : times) {
+    for (const auto& [lat, lon] : points) {
+      const SeaPoint p = sea.at(lat, lon, time, args.footprint);
+      for (double value : {time, lat, lon, p.height, p.normal.x, p.normal.y, p.normal.z,
+                           p.velocity.x, p.velocity.y, p.velocity.z, p.height_rate, p.rest_offset.x,
+                           p.rest_offset.y, p.calm_scale})
+        csv << csv_number(value) << ',';
+      csv << p.wakes << ',' << (p.converged ? 1 : 0) << '\n';
+    }
+  }
+  if (args.output.empty()) {
+    std::cout << csv.str() << std::flush;
+  } else {
+    PendingOutputs files;
+    write_text_atomically(files.add(args.output), csv.str());
+    files.commit();
+  }
+  return kExitOk;
+}
+
+}  // namespace thalassa::cli

@@ -1,0 +1,302 @@
+#include "thalassa/planet/sea_state.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "thalassa/ocean/kelvin_wake.hpp"
+#include "thalassa/ocean/sea_surface.hpp"
+#include "thalassa/ocean/wave_set.hpp"
+#include "thalassa/planet/calm_area.hpp"
+#include "thalassa/planet/geo_bounds.hpp"
+#include "thalassa/planet/nadir_frame.hpp"
+#include "thalassa/planet/ship_wake.hpp"
+#include "trochoids_reference.hpp"
+
+namespace thalassa {
+
+namespace {
+
+// Newton's most iterations. From the rest point's first guess (the point itself) the map's
+// residual falls quadratically: 4-6 iterations on the default sea (tests/unit/sea_state_test.cpp).
+constexpr int kMaxIterations = 60;
+// Halvings of a Newton step that does not lower the residual, before it is taken anyway.
+constexpr int kMaxStepHalvings = 12;
+// Below this det J the map p -> p + D_h(p) is taken as folded: a fixed-point step -F replaces
+// Newton's, and height_rate is dD_z/dt.
+constexpr double kFoldedJacobian = 1e-9;
+// m: the central differences' step of the calm areas' scale s (a C1 smoothstep over the fade,
+// at least metres: their error is step^2 |s'''| / 6, below 1e-7 for a 10 m fade).
+constexpr double kCalmGradientStep = 0.25;
+
+[[noreturn]] void refuse(const std::string& name, const std::string& expected, double got) {
+  std::ostringstream message;
+  message.precision(17);
+  message << "thalassa::SeaState: " << name << ": expected " << expected << ", got " << got;
+  throw std::invalid_argument(message.str());
+}
+
+// One wave as the query sees it in the point's frame: unit direction, wavenumber (rad/m),
+// amplitude (m, times its filter weight), argument at the point (rad) and angular frequency
+// (rad/s).
+struct FrameWave {
+  glm::dvec2 direction{1.0, 0.0};
+  double wavenumber = 0.0;
+  double amplitude = 0.0;
+  double argument = 0.0;
+  double angular_frequency = 0.0;
+};
+
+// The displacement field at a rest point: D (m), its derivatives along the rest point's east and
+// north (dimensionless) and in time (m/s).
+struct Field {
+  glm::dvec3 d{0.0};
+  glm::dvec3 d_dx{0.0};
+  glm::dvec3 d_dy{0.0};
+  glm::dvec3 d_dt{0.0};
+  double calm_scale = 1.0;
+  int wakes = 0;
+};
+
+// Adds one trochoid at argument theta (shaders/ocean/trochoids.glsl): eq. 2's displacement, its
+// derivatives along the rest point and in time (dtheta/dt = omega). `scale` multiplies all three.
+void add_trochoid(glm::dvec2 direction, double wavenumber, double amplitude, double theta,
+                  double omega, Field& f) {
+  f.d += glsl::TrochoidDisplacement(direction, amplitude, theta);
+  glm::dvec3 d_dx, d_dy;
+  glsl::TrochoidDisplacementDerivatives(direction, wavenumber, amplitude, theta, d_dx, d_dy);
+  f.d_dx += d_dx;
+  f.d_dy += d_dy;
+  const double c = omega * amplitude * std::cos(theta);
+  f.d_dt += glm::dvec3(direction * c, -omega * amplitude * std::sin(theta));
+}
+
+}  // namespace
+
+struct SeaState::Impl {
+  Scene scene;
+  Geodetic anchor;
+  Planet planet;
+  ocean::WaveSet waves;
+  std::vector<CalmArea> calm;
+  std::vector<ShipWake> wakes;
+
+  Impl(const Scene& s, const Geodetic& a)
+      : scene(s), anchor(a), planet(s.planet), waves(ocean::make_wave_set(s.ocean)) {
+    for (const CalmAreaSettings& c : s.calm_areas) calm.emplace_back(planet, c);
+    for (const WakeSettings& w : s.wakes) wakes.emplace_back(planet, w);
+  }
+};
+
+namespace {
+
+// The filter weight (paper sec. 3.2) of a wave of `wavelength` m for the footprint (m; 0: 1).
+double filter_weight(const OceanSettings& ocean, double wavelength, double footprint) {
+  if (footprint <= 0.0) return 1.0;
+  return glsl::WaveFilterWeight(ocean.n_min, ocean.n_max, wavelength / footprint);
+}
+
+// What one query needs, fixed while Newton moves the rest point.
+struct Query {
+  const Planet* planet = nullptr;
+  const OceanSettings* ocean = nullptr;
+  const std::vector<CalmArea>* calm = nullptr;
+  double time = 0.0;
+  double footprint = 0.0;
+  std::vector<FrameWave> waves;        // the scene's, in the point's frame
+  std::vector<const ShipWake*> wakes;  // those with a wake somewhere at `time`
+  std::vector<GeoBounds> wake_bounds;  // where each can be non-zero
+  std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
+  ocean::SeaSurface surface;           // the sea at rest in that frame
+
+  // The rest point at `offset` (m, the point's east and north) on the sea at rest, geodetic.
+  Geodetic rest_point(glm::dvec2 offset) const {
+    const double z = ocean::sea_surface_sag(surface, offset);
+    return planet->geodetic(frame->to_ecef({offset.x, offset.y, z}));
+  }
+
+  double calm_scale(glm::dvec2 offset) const {
+    const Geodetic g = rest_point(offset);
+    return calm_amplitude_scale(*calm, g.lat, g.lon);
+  }
+
+  Field field(glm::dvec2 offset) const {
+    Field f;
+    for (const FrameWave& w : waves) {
+      const double theta = w.argument - w.wavenumber * glm::dot(w.direction, offset);
+      add_trochoid(w.direction, w.wavenumber, w.amplitude, theta, w.angular_frequency, f);
+    }
+    if (!frame) return f;
+    if (!calm->empty()) {
+      // s multiplies every wave's amplitude (ocean.vert): D = s B, dD = s dB + B ds. Its gradient
+      // is 0 outside the areas (s = 1) and deep inside (s = scale): s is C1, flat at both ends.
+      const Geodetic g = rest_point(offset);
+      double s = 1.0;
+      bool flat = true;
+      for (const CalmArea& area : *calm) {
+        const double s_area = area.amplitude_scale(g.lat, g.lon);
+        s *= s_area;
+        if (s_area != 1.0 && s_area != area.settings().scale) flat = false;
+      }
+      glm::dvec2 gradient(0.0);
+      if (!flat) {
+        const double h = kCalmGradientStep;
+        gradient.x =
+            (calm_scale(offset + glm::dvec2(h, 0.0)) - calm_scale(offset - glm::dvec2(h, 0.0))) /
+            (2.0 * h);
+        gradient.y =
+            (calm_scale(offset + glm::dvec2(0.0, h)) - calm_scale(offset - glm::dvec2(0.0, h))) /
+            (2.0 * h);
+      }
+      f.d_dx = s * f.d_dx + gradient.x * f.d;
+      f.d_dy = s * f.d_dy + gradient.y * f.d;
+      f.d *= s;
+      f.d_dt *= s;
+      f.calm_scale = s;
+    }
+    if (!wakes.empty()) {
+      // The wakes add their own trochoids, unscaled by s (ocean.vert): at the rest point, each
+      // branch a local plane wave whose argument is stationary in its ship's frame, so that at a
+      // fixed point it advances at omega = k . U e (ocean/kelvin_wake.hpp). Their derivatives
+      // are the plane waves' (the renderer's eq. 3, local_waves.glsl); the slow change of the
+      // branches' amplitude and wave vector over the wake is left out.
+      const Geodetic g = rest_point(offset);
+      for (std::size_t i = 0; i < wakes.size(); ++i) {
+        if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
+        const ocean::KelvinWakeSample sample = wakes[i]->sample(g.lat, g.lon, time);
+        bool any = false;
+        for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent}) {
+          if (!(w->amplitude > 0.0) || !(w->wavenumber > 0.0)) continue;
+          const double h = filter_weight(*ocean, w->wavelength, footprint) * w->amplitude;
+          if (!(h > 0.0)) continue;
+          add_trochoid(w->wave_vector / w->wavenumber, w->wavenumber, h, w->argument,
+                       w->angular_frequency, f);
+          any = true;
+        }
+        f.wakes += any ? 1 : 0;
+      }
+    }
+    return f;
+  }
+};
+
+// |p + D_h(p) - point| for the rest offset p.
+double residual(glm::dvec2 offset, const Field& f) { return glm::length(offset + glm::dvec2(f.d)); }
+
+}  // namespace
+
+SeaState::SeaState(const Scene& scene, const std::optional<Geodetic>& wave_anchor) {
+  Geodetic anchor = wave_anchor ? Geodetic{wave_anchor->lat, wave_anchor->lon, 0.0}
+                                : nearest_wave_anchor(scene.camera.lat, scene.camera.lon);
+  if (!(anchor.lat >= -90.0 && anchor.lat <= 90.0))
+    refuse("wave_anchor.lat", "degrees in [-90, 90]", anchor.lat);
+  if (!std::isfinite(anchor.lon)) refuse("wave_anchor.lon", "finite degrees", anchor.lon);
+  impl_ = std::make_unique<Impl>(scene, anchor);
+}
+
+SeaState::~SeaState() = default;
+SeaState::SeaState(const SeaState& other) : impl_(std::make_unique<Impl>(*other.impl_)) {}
+SeaState& SeaState::operator=(const SeaState& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+SeaState::SeaState(SeaState&&) noexcept = default;
+SeaState& SeaState::operator=(SeaState&&) noexcept = default;
+
+const Scene& SeaState::scene() const { return impl_->scene; }
+const Geodetic& SeaState::wave_anchor() const { return impl_->anchor; }
+
+SeaPoint SeaState::at(double lat, double lon) const { return at(lat, lon, impl_->scene.time); }
+
+SeaPoint SeaState::at(double lat, double lon, double time, double footprint) const {
+  if (!(lat >= -90.0 && lat <= 90.0)) refuse("lat", "degrees in [-90, 90]", lat);
+  if (!std::isfinite(lon)) refuse("lon", "finite degrees", lon);
+  if (!(time >= 0.0 && time <= kSceneMaxTime)) refuse("time", "seconds in [0, 1e12]", time);
+  if (!(footprint >= 0.0 && std::isfinite(footprint)))
+    refuse("footprint", "finite metres >= 0", footprint);
+
+  const Impl& sea = *impl_;
+  CameraSettings at_point;
+  at_point.lat = lat;
+  at_point.lon = lon;
+  at_point.height = 0.0;
+  // The point's frame exactly as a camera's nadir frame there: the chart's origin and axes
+  // (planet/nadir_frame.hpp), so that the waves are the renderer's.
+  const NadirFrame nadir = make_nadir_frame(sea.planet, at_point, sea.anchor);
+  Query q;
+  q.planet = &sea.planet;
+  q.ocean = &sea.scene.ocean;
+  q.calm = &sea.calm;
+  q.time = time;
+  q.footprint = footprint;
+  const std::vector<double> phases = ocean::wrapped_phases(sea.waves, time, nadir.wave_origin);
+  for (std::size_t i = 0; i < sea.waves.waves.size(); ++i) {
+    const ocean::Wave& w = sea.waves.waves[i];
+    const double h = filter_weight(sea.scene.ocean, w.wavelength, footprint) * w.amplitude;
+    if (!(h > 0.0)) continue;
+    q.waves.push_back({ocean::chart_direction_in_frame(nadir.wave_axes, w.direction), w.wavenumber,
+                       h, phases[i], w.angular_frequency});
+  }
+  for (const ShipWake& wake : sea.wakes) {
+    GeoBounds bounds = wake.bounds(time);
+    if (bounds.empty()) continue;
+    q.wakes.push_back(&wake);
+    q.wake_bounds.push_back(bounds);
+  }
+  if (!sea.calm.empty() || !q.wakes.empty()) {
+    q.frame.emplace(sea.planet, lat, lon, 0.0);
+    q.surface = nadir.sea_surface;
+  }
+
+  // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0.
+  glm::dvec2 offset(0.0);
+  Field f = q.field(offset);
+  double r = residual(offset, f);
+  SeaPoint out;
+  while (r > kSeaStateTolerance && out.iterations < kMaxIterations) {
+    ++out.iterations;
+    const glm::dmat2 jacobian(1.0 + f.d_dx.x, f.d_dx.y, f.d_dy.x, 1.0 + f.d_dy.y);
+    const double det = glm::determinant(jacobian);
+    const glm::dvec2 residual_vector = offset + glm::dvec2(f.d);
+    glm::dvec2 step =
+        det > kFoldedJacobian ? -(glm::inverse(jacobian) * residual_vector) : -residual_vector;
+    glm::dvec2 next = offset + step;
+    Field next_field = q.field(next);
+    double next_r = residual(next, next_field);
+    for (int halving = 0; halving < kMaxStepHalvings && !(next_r < r); ++halving) {
+      step *= 0.5;
+      next = offset + step;
+      next_field = q.field(next);
+      next_r = residual(next, next_field);
+    }
+    if (!std::isfinite(next_r)) break;
+    if (!(next_r < r) && out.iterations > 1) break;  // no progress: keep the best iterate
+    offset = next;
+    f = next_field;
+    r = next_r;
+  }
+  out.converged = r <= kSeaStateTolerance;
+
+  out.height = f.d.z;
+  const glm::dvec3 tangent_x = glm::dvec3(1.0, 0.0, 0.0) + f.d_dx;
+  const glm::dvec3 tangent_y = glm::dvec3(0.0, 1.0, 0.0) + f.d_dy;
+  const glm::dvec3 n = glm::cross(tangent_x, tangent_y);
+  const double n_length = glm::length(n);
+  out.normal = n_length > 0.0 && std::isfinite(n_length) ? n / n_length : glm::dvec3(0, 0, 1);
+  out.velocity = f.d_dt;
+  const glm::dmat2 jacobian(tangent_x.x, tangent_x.y, tangent_y.x, tangent_y.y);
+  const double det = glm::determinant(jacobian);
+  out.height_rate = f.d_dt.z;
+  if (std::abs(det) > kFoldedJacobian) {
+    const glm::dvec2 drift = -(glm::inverse(jacobian) * glm::dvec2(f.d_dt));
+    out.height_rate += f.d_dx.z * drift.x + f.d_dy.z * drift.y;
+  }
+  out.rest_offset = offset;
+  out.calm_scale = f.calm_scale;
+  out.wakes = f.wakes;
+  return out;
+}
+
+}  // namespace thalassa

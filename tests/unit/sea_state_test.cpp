@@ -1,0 +1,360 @@
+// SeaState (planet/sea_state.hpp): the sea's surface at a latitude and longitude on the CPU. The
+// identities: a trochoid's Eulerian mean and mean square over its wavelength (-k h^2 / 2 and
+// h^2 / 2, which only the inverted map gives: the particles' own heights average 0), the normal
+// and the rates against finite differences of the heights, the particle carried by its velocity
+// keeping its rest point, the sea's height variance against the wave set's, the calm areas' and
+// the wakes' trochoids at the rest point, and the refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "thalassa/engine/scene.hpp"
+#include "thalassa/ocean/kelvin_wake.hpp"
+#include "thalassa/ocean/sea_surface.hpp"
+#include "thalassa/ocean/wave_set.hpp"
+#include "thalassa/planet/geodesy.hpp"
+#include "thalassa/planet/nadir_frame.hpp"
+#include "thalassa/planet/sea_state.hpp"
+#include "thalassa/planet/ship_wake.hpp"
+
+namespace thalassa {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+Scene MakeScene(const std::vector<std::string>& sets) {
+  SceneBuilder builder;
+  for (const std::string& s : sets) builder.set(s);
+  return builder.build();
+}
+
+// The point of the sea at rest at `xy` (m, east and north) from (lat, lon) in its tangent plane.
+Geodetic Offset(const Planet& planet, double lat, double lon, glm::dvec2 xy) {
+  const LocalFrame frame(planet, lat, lon, 0.0);
+  const ocean::SeaSurface surface = planet_sea_surface(planet, lat, lon);
+  return planet.geodetic(frame.to_ecef({xy.x, xy.y, ocean::sea_surface_sag(surface, xy)}));
+}
+
+// One trochoid: 1 wave of 20 m from the omega^-2 spectrum at 15 m/s (steepness k h = 0.08).
+Scene OneWave() {
+  return MakeScene({"ocean.waves=1", "ocean.lambda_min=20", "ocean.lambda_max=20",
+                    "ocean.wind_speed=15", "ocean.spectrum=omega-2"});
+}
+
+TEST(SeaState, OneTrochoidsEulerianMeanAndMeanSquareOverItsWavelength) {
+  const Scene scene = OneWave();
+  const SeaState sea(scene);
+  const ocean::WaveSet waves = ocean::make_wave_set(scene.ocean);
+  ASSERT_EQ(waves.waves.size(), 1u);
+  const ocean::Wave& w = waves.waves[0];
+  const double kh = w.wavenumber * w.amplitude;
+  ASSERT_GT(kh, 0.02);
+  // Along the wave's direction in the frame of the scene's camera's nadir, one wavelength in 64
+  // steps: the trapezoid rule of a smooth periodic function, exact to rounding.
+  const Planet planet(scene.planet);
+  const NadirFrame nadir = make_nadir_frame(planet, scene.camera, sea.wave_anchor());
+  const glm::dvec2 d = ocean::chart_direction_in_frame(nadir.wave_axes, w.direction);
+  constexpr int kSteps = 64;
+  double mean = 0.0, square = 0.0, highest = -1e9, lowest = 1e9;
+  for (int j = 0; j < kSteps; ++j) {
+    const Geodetic p =
+        Offset(planet, scene.camera.lat, scene.camera.lon, (w.wavelength * j / kSteps + 3.0) * d);
+    const SeaPoint s = sea.at(p.lat, p.lon, 7.0);
+    ASSERT_TRUE(s.converged);
+    mean += s.height / kSteps;
+    square += s.height * s.height / kSteps;
+    highest = std::max(highest, s.height);
+    lowest = std::min(lowest, s.height);
+  }
+  // Mean: integral of h cos(theta) (1 - k h cos(theta)) over the rest points: -k h^2 / 2; the
+  // square's: h^2 / 2 (the odd power integrates to 0).
+  const double h = w.amplitude;
+  EXPECT_NEAR(mean, -0.5 * kh * h, 1e-9 * h) << "h " << h << " k h " << kh;
+  EXPECT_NEAR(square, 0.5 * h * h, 1e-9 * h * h);
+  EXPECT_LE(highest, h * (1.0 + 1e-12));
+  EXPECT_GE(lowest, -h * (1.0 + 1e-12));
+  EXPECT_GT(highest, 0.95 * h);
+}
+
+// The finite differences of the heights over `step` (m) east and north of (lat, lon), and of
+// time over `dt` (s).
+struct Differences {
+  glm::dvec2 slope;
+  double rate;
+};
+Differences Difference(const SeaState& sea, const Planet& planet, double lat, double lon,
+                       double time, double step, double dt) {
+  auto height = [&](glm::dvec2 xy, double t) {
+    const Geodetic p = Offset(planet, lat, lon, xy);
+    return sea.at(p.lat, p.lon, t).height;
+  };
+  Differences out;
+  out.slope.x = (height({step, 0.0}, time) - height({-step, 0.0}, time)) / (2.0 * step);
+  out.slope.y = (height({0.0, step}, time) - height({0.0, -step}, time)) / (2.0 * step);
+  // The times as doubles hold them (at 1e9 s their step is 1.2e-7 s).
+  const double later = time + dt, earlier = time - dt;
+  out.rate =
+      (sea.at(lat, lon, later).height - sea.at(lat, lon, earlier).height) / (later - earlier);
+  return out;
+}
+
+TEST(SeaState, NormalAndHeightRateAreTheHeightsDerivatives) {
+  // The default sea (60 waves, 2 cm to 30 m, 10 m/s), and at 20 m/s, at a long time and near the
+  // antimeridian and a pole.
+  struct Case {
+    std::vector<std::string> sets;
+    double time;
+  };
+  const std::vector<Case> cases = {
+      {{}, 12.5},
+      {{"ocean.wind_speed=20", "camera.lat=-62.3", "camera.lon=179.99"}, 1e9},
+      {{"camera.lat=89.9", "camera.lon=-40"}, 3600.0},
+  };
+  for (const Case& c : cases) {
+    const Scene scene = MakeScene(c.sets);
+    const SeaState sea(scene);
+    const Planet planet(scene.planet);
+    int checked = 0;
+    for (double x : {-7.0, 0.0, 11.3}) {
+      for (double y : {-2.1, 5.0}) {
+        const Geodetic p = Offset(planet, scene.camera.lat, scene.camera.lon, {x, y});
+        const SeaPoint s = sea.at(p.lat, p.lon, c.time);
+        ASSERT_TRUE(s.converged) << x << " " << y;
+        EXPECT_LE(s.iterations, 12);
+        if (s.normal.z < 0.2) continue;  // near a fold the differences are not a slope
+        // The shortest wave is 2 cm: a 10 um step's central difference is within (k step)^2 / 6
+        // = 1.6e-5 of the slope; Newton's tolerance adds 1e-10 / 1e-5.
+        const Differences d = Difference(sea, planet, p.lat, p.lon, c.time, 1e-5, 1e-5);
+        const glm::dvec2 slope(-s.normal.x / s.normal.z, -s.normal.y / s.normal.z);
+        EXPECT_NEAR(d.slope.x, slope.x, 2e-4 * (1.0 + std::abs(slope.x))) << x << " " << y;
+        EXPECT_NEAR(d.slope.y, slope.y, 2e-4 * (1.0 + std::abs(slope.y))) << x << " " << y;
+        EXPECT_NEAR(d.rate, s.height_rate, 2e-4 * (1.0 + std::abs(s.height_rate)));
+        ++checked;
+      }
+    }
+    EXPECT_GE(checked, 4);
+  }
+}
+
+// The particle at the surface, carried for dt by its velocity, is the surface's particle there
+// at t + dt: the same rest point, to dt^2.
+TEST(SeaState, VelocityCarriesTheParticleThatRestsThere) {
+  const Scene scene = MakeScene({"ocean.wind_speed=15"});
+  const SeaState sea(scene);
+  const Planet planet(scene.planet);
+  for (double x : {0.0, 4.0, -9.5}) {
+    const Geodetic p = Offset(planet, scene.camera.lat, scene.camera.lon, {x, 1.0});
+    const SeaPoint s = sea.at(p.lat, p.lon, 30.0);
+    ASSERT_TRUE(s.converged);
+    const LocalFrame frame(planet, p.lat, p.lon, 0.0);
+    const glm::dvec3 rest = frame.to_ecef({s.rest_offset.x, s.rest_offset.y, 0.0});
+    double last_error = 0.0;
+    for (double dt : {1e-2, 5e-3}) {
+      const Geodetic moved = Offset(planet, p.lat, p.lon, glm::dvec2(s.velocity) * dt);
+      const SeaPoint later = sea.at(moved.lat, moved.lon, 30.0 + dt);
+      const LocalFrame later_frame(planet, moved.lat, moved.lon, 0.0);
+      const glm::dvec3 later_rest =
+          later_frame.to_ecef({later.rest_offset.x, later.rest_offset.y, 0.0});
+      const double error = glm::length(later_rest - rest);
+      // The particle's path curves by |a| dt^2 / 2 (|a| = omega^2 h, 2.5 m/s^2 for the 2 cm
+      // waves' orbits): the rest points part by that, and halve... quarter with dt.
+      EXPECT_LT(error, 20.0 * dt * dt) << x << " dt " << dt;
+      EXPECT_NEAR(later.height, s.height + s.velocity.z * dt, 20.0 * dt * dt);
+      if (last_error > 0.0) {
+        EXPECT_LT(error, 0.4 * last_error + 1e-9);
+      }
+      last_error = error;
+    }
+  }
+}
+
+// A time series at one point: the height's variance is the wave set's, sum h_i^2 / 2, and its
+// mean the trochoids' -sum k_i h_i^2 / 2 (the Eulerian mean: averaged over the particles it is 0).
+TEST(SeaState, HeightVarianceAndMeanAreTheWaveSets) {
+  const Scene scene = MakeScene({"ocean.wind_speed=7"});
+  const SeaState sea(scene);
+  const ocean::WaveSet waves = ocean::make_wave_set(scene.ocean);
+  double variance = 0.0, mean = 0.0;
+  for (const ocean::Wave& w : waves.waves) {
+    variance += 0.5 * w.amplitude * w.amplitude;
+    mean -= 0.5 * w.wavenumber * w.amplitude * w.amplitude;
+  }
+  constexpr int kSamples = 20000;
+  constexpr double kStep = 0.731;  // s: no multiple of a short wave's period
+  double sum = 0.0, sum_square = 0.0;
+  for (int i = 0; i < kSamples; ++i) {
+    const SeaPoint s = sea.at(scene.camera.lat, scene.camera.lon, 100.0 + kStep * i);
+    ASSERT_TRUE(s.converged) << i;
+    sum += s.height;
+    sum_square += s.height * s.height;
+  }
+  const double measured_mean = sum / kSamples;
+  const double measured_variance = sum_square / kSamples - measured_mean * measured_mean;
+  // 4 hours hold about 3,400 periods of the longest wave (30 m, 4.4 s): each wave's time averages
+  // are within about 1/(omega T) of their limits.
+  EXPECT_NEAR(measured_variance, variance, 0.02 * variance);
+  EXPECT_NEAR(measured_mean, mean, 0.1 * std::abs(mean)) << "variance " << variance;
+  EXPECT_LT(measured_mean, 0.0);
+}
+
+TEST(SeaState, FootprintWeighsTheWavesAsTheGridDoes) {
+  const Scene scene = MakeScene({});
+  const SeaState sea(scene);
+  const double lat = scene.camera.lat, lon = scene.camera.lon;
+  // A footprint below a tenth of the shortest wave keeps every wave at weight 1: the same sea.
+  const SeaPoint all = sea.at(lat, lon, 5.0);
+  const SeaPoint tiny = sea.at(lat, lon, 5.0, 1e-4);
+  EXPECT_EQ(all.height, tiny.height);
+  EXPECT_EQ(all.normal, tiny.normal);
+  // Longer than N_min times the longest wave: none (w = 0), the sea at rest.
+  const SeaPoint none = sea.at(lat, lon, 5.0, 31.0);
+  EXPECT_EQ(none.height, 0.0);
+  EXPECT_EQ(none.normal, glm::dvec3(0.0, 0.0, 1.0));
+  EXPECT_EQ(none.velocity, glm::dvec3(0.0));
+  EXPECT_EQ(none.iterations, 0);
+  // A 1 m footprint leaves the waves of 2.5 m and more whole: the short ones' slopes go, so the
+  // normal's tilt falls, averaged over a stretch of sea.
+  const Planet planet(scene.planet);
+  double tilt_all = 0.0, tilt_filtered = 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const Geodetic p = Offset(planet, lat, lon, {0.37 * i, 0.11 * i});
+    tilt_all += 1.0 - sea.at(p.lat, p.lon, 5.0).normal.z;
+    tilt_filtered += 1.0 - sea.at(p.lat, p.lon, 5.0, 1.0).normal.z;
+  }
+  EXPECT_LT(tilt_filtered, 0.5 * tilt_all);
+}
+
+// A calm area's scale s multiplies every wave: 0 deep inside stills the sea; in the fade, the
+// normal still follows the heights (the gradient of s included).
+TEST(SeaState, CalmAreasScaleTheWaves) {
+  const double lat = 20.0, lon = -150.0;
+  const Scene open = MakeScene({"camera.lat=20", "camera.lon=-150"});
+  const auto area = [&](double scale) {
+    return "calm_areas=[{\"polygon\": [{\"lat\": 19.99, \"lon\": -150.01}, "
+           "{\"lat\": 19.99, \"lon\": -149.99}, {\"lat\": 20.01, \"lon\": -149.99}, "
+           "{\"lat\": 20.01, \"lon\": -150.01}], \"scale\": " +
+           std::to_string(scale) + ", \"fade\": 200}]";
+  };
+  const Scene still = MakeScene({"camera.lat=20", "camera.lon=-150", area(0.0)});
+  const SeaState still_sea(still);
+  const SeaPoint centre = still_sea.at(lat, lon, 9.0);
+  EXPECT_EQ(centre.height, 0.0);
+  EXPECT_EQ(centre.calm_scale, 0.0);
+  EXPECT_EQ(centre.normal, glm::dvec3(0.0, 0.0, 1.0));
+  EXPECT_EQ(centre.velocity, glm::dvec3(0.0));
+  // Outside, the open sea's.
+  const SeaState open_sea(open);
+  const Planet planet(open.planet);
+  const Geodetic outside = Offset(planet, lat, lon, {3000.0, 0.0});
+  EXPECT_EQ(still_sea.at(outside.lat, outside.lon, 9.0).height,
+            open_sea.at(outside.lat, outside.lon, 9.0).height);
+  // In the fade (100 m inside the east edge, about 1,045 m east of the centre).
+  const SeaState half_sea(MakeScene({"camera.lat=20", "camera.lon=-150", area(0.3)}));
+  for (double y : {0.0, 3.7}) {
+    const Geodetic p = Offset(planet, lat, lon, {945.0, y});
+    const SeaPoint s = half_sea.at(p.lat, p.lon, 9.0);
+    ASSERT_TRUE(s.converged);
+    EXPECT_GT(s.calm_scale, 0.3);
+    EXPECT_LT(s.calm_scale, 1.0);
+    const Differences d = Difference(half_sea, planet, p.lat, p.lon, 9.0, 1e-5, 1e-5);
+    EXPECT_NEAR(d.slope.x, -s.normal.x / s.normal.z, 2e-4);
+    EXPECT_NEAR(d.slope.y, -s.normal.y / s.normal.z, 2e-4);
+    EXPECT_NEAR(d.rate, s.height_rate, 2e-4);
+  }
+}
+
+// A ship's wake on a calm sea: at the rest point the result names, the wake's own trochoids
+// (ShipWake::sample) displace it onto the asked point, and their heights are the height; ahead of
+// the ship the sea is at rest.
+TEST(SeaState, WakesTrochoidsAtTheRestPoint) {
+  const Scene scene =
+      MakeScene({"camera.lat=20", "camera.lon=-150", "ocean.wind_speed=0",
+                 "wakes=[{\"lat\": 20, \"lon\": -150, \"heading\": 30, \"speed\": 8, \"time\": 0, "
+                 "\"amplitude\": 0.4}]"});
+  const SeaState sea(scene);
+  const Planet planet(scene.planet);
+  const ShipWake wake(planet, scene.wakes[0]);
+  // Astern (heading 210) 150 m and a little to port, and ahead.
+  const double back = 210.0 * kPi / 180.0;
+  int inside = 0;
+  for (double lateral : {0.0, 12.0, 30.0}) {
+    const glm::dvec2 xy = 150.0 * glm::dvec2(std::sin(back), std::cos(back)) +
+                          lateral * glm::dvec2(-std::cos(back), std::sin(back));
+    const Geodetic p = Offset(planet, 20.0, -150.0, xy);
+    const SeaPoint s = sea.at(p.lat, p.lon, 0.0);
+    ASSERT_TRUE(s.converged);
+    if (s.wakes == 0) continue;
+    ++inside;
+    const Geodetic rest = Offset(planet, p.lat, p.lon, s.rest_offset);
+    const ocean::KelvinWakeSample k = wake.sample(rest.lat, rest.lon, 0.0);
+    glm::dvec3 d(0.0);
+    for (const ocean::WakeWave* w : {&k.transverse, &k.divergent}) {
+      if (!(w->amplitude > 0.0)) continue;
+      const glm::dvec2 dir = w->wave_vector / w->wavenumber;
+      d += glm::dvec3(dir * (w->amplitude * std::sin(w->argument)),
+                      w->amplitude * std::cos(w->argument));
+    }
+    EXPECT_GT(glm::length(d), 1e-3);
+    // The rest offset plus the horizontal displacement is the point (the frames of p and of the
+    // rest point agree to |offset| / R).
+    EXPECT_LT(glm::length(s.rest_offset + glm::dvec2(d)), 1e-7) << lateral;
+    EXPECT_NEAR(s.height, d.z, 1e-7) << lateral;
+  }
+  EXPECT_GE(inside, 2);
+  const Geodetic ahead = Offset(planet, 20.0, -150.0, {50.0, 90.0});
+  const SeaPoint calm = sea.at(ahead.lat, ahead.lon, 0.0);
+  EXPECT_EQ(calm.wakes, 0);
+  EXPECT_EQ(calm.height, 0.0);
+}
+
+TEST(SeaState, RefusesWhatIsNotAPlaceTimeOrFootprint) {
+  const SeaState sea(MakeScene({}));
+  const double nan = std::nan("");
+  const auto message = [&](auto call) {
+    try {
+      call();
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no exception");
+  };
+  EXPECT_NE(message([&] { sea.at(nan, 0.0); }).find("lat: expected degrees in [-90, 90]"),
+            std::string::npos);
+  EXPECT_NE(message([&] { sea.at(90.5, 0.0); }).find("lat"), std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, INFINITY); }).find("lon: expected finite"),
+            std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, 0.0, -1.0); }).find("time"), std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, 0.0, nan); }).find("time"), std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, 0.0, 2e12); }).find("time"), std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, 0.0, 0.0, -1.0); }).find("footprint"), std::string::npos);
+  EXPECT_NE(message([&] { sea.at(0.0, 0.0, 0.0, nan); }).find("footprint"), std::string::npos);
+  EXPECT_NE(message([&] {
+              SeaState(MakeScene({}), Geodetic{nan, 0.0, 0.0});
+            }).find("wave_anchor.lat"),
+            std::string::npos);
+  // The poles and the antimeridian are places.
+  for (const auto& [lat, lon] : {std::pair{90.0, 0.0}, {-90.0, 180.0}, {0.0, -180.0}}) {
+    const SeaPoint s = sea.at(lat, lon, 1.0);
+    EXPECT_TRUE(s.converged) << lat << " " << lon;
+    EXPECT_TRUE(std::isfinite(s.height));
+  }
+}
+
+// The anchor decides the chart: the default is a new Renderer's, the lattice point nearest the
+// camera; the same point under another anchor has another sea.
+TEST(SeaState, TheAnchorIsTheRenderersAndDecidesTheWaves) {
+  const Scene scene = MakeScene({"camera.lat=20.1", "camera.lon=-150.2"});
+  const SeaState sea(scene);
+  EXPECT_EQ(sea.wave_anchor().lat, 20.0);
+  EXPECT_EQ(sea.wave_anchor().lon, -150.25);
+  const SeaState other(scene, Geodetic{20.25, -150.25, 0.0});
+  EXPECT_NE(sea.at(20.1, -150.2, 3.0).height, other.at(20.1, -150.2, 3.0).height);
+  const SeaState copy = sea;
+  EXPECT_EQ(copy.at(20.1, -150.2, 3.0).height, sea.at(20.1, -150.2, 3.0).height);
+}
+
+}  // namespace
+}  // namespace thalassa
