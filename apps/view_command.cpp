@@ -49,6 +49,11 @@ constexpr double kZoomStep = 0.1;
 // throw the camera across the planet.
 constexpr double kLongestStep = 0.25;
 constexpr double kBoost = 5.0;  // a held Shift
+// m: the camera flown by hand stays this far above the water under it (the sea's height there,
+// every wave: planet/sea_state.hpp), so that a crest passing under a camera flown low lifts it
+// rather than swallow it. The grid draws the waves shorter than its cell filtered, centimetres
+// below the height of every wave near the camera.
+constexpr double kWaveClearance = 0.25;
 // A recorded flight keeps the camera of a frame at most this often, s: 30 keyframes a second
 // follow a hand-flown path closely (docs/flight.md's splines pass through every key), and a
 // flight file's 100000 keys last 55 minutes.
@@ -124,6 +129,22 @@ class ViewedScene {
  private:
   SceneBuilder builder_;
   Scene scene_;
+};
+
+// The lowest height (m) of a camera flown by hand: kWaveClearance above the water under it, the
+// sea the renderer draws (its waves' anchor) answered on the CPU; made again when the wind (all
+// of the sea a viewer changes) or the anchor changes.
+class WaveFloor {
+ public:
+  double at(const Scene& scene, const Geodetic& anchor) {
+    if (!sea_ || !(sea_->scene().ocean == scene.ocean) || sea_->wave_anchor().lat != anchor.lat ||
+        sea_->wave_anchor().lon != anchor.lon)
+      sea_.emplace(scene, anchor);
+    return sea_->at(scene.camera.lat, scene.camera.lon, scene.time).height + kWaveClearance;
+  }
+
+ private:
+  std::optional<SeaState> sea_;
 };
 
 // A file name in the working folder for now (UTC): `pattern` is strftime's, e.g.
@@ -356,6 +377,9 @@ void draw_panel(const RenderStats& stats, double wall_ms, const ViewedScene& vie
     drag("latitude", c.lat, 0.001, -90.0, 90.0, "%.6f deg");
     drag("longitude", c.lon, 0.001, -180.0, 180.0, "%.6f deg");
     drag("height", c.height, 0.01, 0.01, 1e9, "%.2f m", ImGuiSliderFlags_Logarithmic);
+    // The height flown; the frame's camera is higher where a crest under it lifted it.
+    if (viewed.scene().camera.height > c.height)
+      ImGui::Text("lifted by the waves to %.2f m", viewed.scene().camera.height);
     drag("heading", c.heading, 0.5, -360.0, 360.0, "%.1f deg");
     drag("pitch", c.pitch, 0.25, -90.0, 90.0, "%.2f deg");
     drag("field of view", c.fov_y, 0.25, 0.01, 179.0, "%.2f deg", ImGuiSliderFlags_Logarithmic);
@@ -558,6 +582,9 @@ int run_view(const ViewArgs& args) {
   bool panel = !args.no_panel;
   bool time_running = !args.paused;
   double time_rate = 1.0;
+  // The height flown (keys, panel, scene): the camera's, unless the water under it lifts it.
+  double flown_height = viewed.scene().camera.height;
+  WaveFloor wave_floor;
   std::string message;
   FlightRecorder recorder;
   bool record_from_start = !args.record.empty();
@@ -582,6 +609,7 @@ int run_view(const ViewArgs& args) {
     ImGui::NewFrame();
     const ImGuiIO& io = ImGui::GetIO();
     Scene next = framebuffer_scene(viewed.scene());
+    next.camera.height = flown_height;
     HeldKeys keys = io.WantCaptureKeyboard ? HeldKeys{} : held_keys(window);
     if (!io.WantCaptureMouse) {
       // Dragging turns the view by the angle the cursor moved; the wheel zooms.
@@ -631,6 +659,12 @@ int run_view(const ViewArgs& args) {
       next.time = flown.time;
       if (playback.animates_exposure()) next.image.exposure = flown.image.exposure;
     }
+    // A crest under the camera lifts it, and lets it down again as it passes: the camera rides
+    // the waves at kWaveClearance. Not a flight played: that is `fly`'s camera, as keyed.
+    flown_height = next.camera.height;
+    if (!playback.playing)
+      next.camera.height =
+          std::max(next.camera.height, wave_floor.at(next, renderer->stats().wave_anchor));
     try {
       viewed.update(next);
       renderer->set_scene(viewed.scene());

@@ -163,6 +163,25 @@ if(NOT no_running_clock)
 endif()
 
 # Bad input: status 2 before any window, nothing written.
+# A camera flown below a crest rides it: at 0.3 m with the clock stopped at 8 s, where the default
+# sea stands 0.77 m high under it (`thalassa sea`), the frame's camera is kWaveClearance (0.25 m)
+# above the water, not inside the wave; without the floor it stays at 0.3 m.
+run_view(riding --frames 2 --paused --set camera.height=0.3 --set time=8
+         --screenshot ${WORK}/riding.exr)
+execute_process(COMMAND ${THALASSA} sea --set time=8 RESULT_VARIABLE sea_status
+                OUTPUT_VARIABLE sea_csv ERROR_VARIABLE sea_error)
+string(REGEX MATCH "\n[^,]*,[^,]*,[^,]*,([^,]*)," sea_row "${sea_csv}")
+set(sea_height "${CMAKE_MATCH_1}")
+if(NOT riding_status EQUAL 0 OR NOT sea_status EQUAL 0 OR NOT sea_height GREATER 0.3)
+  message(FATAL_ERROR "view (${riding_status}) or sea (${sea_status}) failed, or the sea's "
+                      "height ${sea_height} is not above the camera: ${riding_error}${sea_error}")
+endif()
+file(READ ${WORK}/riding.json riding_scene)
+string(JSON riding_height GET "${riding_scene}" camera height)
+if(NOT riding_height GREATER sea_height OR NOT riding_height LESS 1.1)
+  message(FATAL_ERROR "the camera at 0.3 m over water ${sea_height} m high was drawn at "
+                      "${riding_height} m")
+endif()
 run_view(bad_key --set camera.height=-20000 --frames 1 --screenshot ${WORK}/bad.exr)
 if(NOT bad_key_status EQUAL 2 OR NOT bad_key_error MATCHES "camera.height")
   message(FATAL_ERROR "a bad key: status ${bad_key_status}, message: ${bad_key_error}")
