@@ -135,6 +135,18 @@ Metadata render_metadata(const Scene& scene, const std::string& merged_json,
   return metadata;
 }
 
+double SeaCache::under_camera(const Scene& scene, const Geodetic& anchor) {
+  if (!sea_ || !(sea_->scene().ocean == scene.ocean) || sea_->wave_anchor().lat != anchor.lat ||
+      sea_->wave_anchor().lon != anchor.lon)
+    sea_.emplace(scene, anchor);
+  return sea_->at(scene.camera.lat, scene.camera.lon, scene.time).height;
+}
+
+double camera_depth(SeaCache& sea, const Scene& scene, const Geodetic& anchor) {
+  if (scene.camera.height >= kSpaceModeHeight) return 0.0;
+  return std::max(sea.under_camera(scene, anchor) - scene.camera.height, 0.0);
+}
+
 std::string parse_terms(const std::string& text, LightTerms& terms) {
   const std::string problem = parse_light_terms(text, terms);
   return problem.empty() ? "" : "--terms" + (text.empty() ? "" : " " + text) + ": " + problem;

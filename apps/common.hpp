@@ -63,6 +63,24 @@ class PendingOutputs {
   std::vector<std::pair<std::string, std::string>> outputs_;  // (pending, final)
 };
 
+// The sea of the scenes a command draws, answered on the CPU (planet/sea_state.hpp) in the
+// renderer's waves' anchor; made again when the waves or the anchor change (a flight and the
+// viewer change nothing else of the sea: not its wakes, calm areas or planet).
+class SeaCache {
+ public:
+  // The water's height (m above the sea at rest) under the camera of `scene` at its time, every
+  // wave.
+  double under_camera(const Scene& scene, const Geodetic& anchor);
+
+ private:
+  std::optional<SeaState> sea_;
+};
+
+// How far (m, > 0) the camera of `scene` is under the water at its nadir, where the image shows
+// the wave from inside (its back fills the sky); 0 above it, and from the space mode's heights
+// up, where no wave reaches.
+double camera_depth(SeaCache& sea, const Scene& scene, const Geodetic& anchor);
+
 // --terms TEXT -> the terms (parse_light_terms); an error message naming the option otherwise.
 std::string parse_terms(const std::string& text, LightTerms& terms);
 

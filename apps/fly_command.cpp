@@ -108,6 +108,8 @@ struct FrameRecord {
   double time = 0.0;        // s into the flight
   double scene_time = 0.0;  // s: the frame's scene `time` (the waves' clock)
   double height = 0.0;      // m
+  // m: how far the camera is under the water at its nadir (camera_depth; 0 above it).
+  double camera_depth = 0.0;
   bool skipped = false;
   RenderStats stats;
   // Wall-clock: creating the Renderer (the first frame rendered) or setting the frame's scene.
@@ -165,6 +167,7 @@ std::string stats_json(const std::vector<FrameRecord>& records, double wall_seco
     f["scene_time"] = r.scene_time;
     f["camera_height"] = r.height;
     f["skipped"] = r.skipped;
+    if (r.camera_depth > 0.0) f["camera_depth"] = r.camera_depth;
     if (!r.skipped) {
       f["mode"] = r.stats.mode;
       f["frame_ms"] = r.stats.frame_ms;
@@ -305,6 +308,7 @@ int run_fly(const FlyArgs& args) {
     renderer_options.wave_anchor =
         nearest_wave_anchor(last_scene.camera.lat, last_scene.camera.lon);
   }
+  SeaCache sea;  // the water under each frame's camera
   ProgressBar progress(last - first + 1, "frames");
   std::vector<FrameRecord> records;
   const auto start = Clock::now();
@@ -340,6 +344,7 @@ int run_fly(const FlyArgs& args) {
     renderer->render();
     const Image image = renderer->image();
     record.stats = renderer->stats();
+    record.camera_depth = camera_depth(sea, scene, record.stats.wave_anchor);
     if (const std::string problem = nonfinite_pixels(image); !problem.empty()) {
       progress.finish();
       print_error("frame " + std::to_string(frame) + ": " + problem +
@@ -362,6 +367,26 @@ int run_fly(const FlyArgs& args) {
   progress.finish();
   renderer.reset();
   const double wall = seconds_since(start);
+  {
+    int under = 0, first_under = -1, last_under = -1;
+    double deepest = 0.0;
+    for (const FrameRecord& r : records) {
+      if (r.camera_depth <= 0.0) continue;
+      ++under;
+      if (first_under < 0) first_under = r.frame;
+      last_under = r.frame;
+      deepest = std::max(deepest, r.camera_depth);
+    }
+    if (under > 0) {
+      char text[240];
+      std::snprintf(text, sizeof text,
+                    "warning: %d frames (%d to %d) have the camera under the water, up to %.3g m: "
+                    "they show the wave from inside (`--stats` gives each frame's camera_depth, "
+                    "`thalassa sea` the sea's height)",
+                    under, first_under, last_under, deepest);
+      print_error(text);
+    }
+  }
   std::fprintf(stderr, "thalassa: frames %d to %d: %d rendered, %d already written, in %s\n", first,
                last, progress.worked_count(), progress.skipped_count(),
                duration_text(wall).c_str());

@@ -287,7 +287,18 @@ int run_render(const RenderArgs& args) {
     }
   }
   const Image image = renderer.image();
-  const RenderStats stats = renderer.stats();
+  RenderStats stats = renderer.stats();
+  {
+    SeaCache sea;
+    if (const double depth = camera_depth(sea, scene, stats.wave_anchor); depth > 0.0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "the camera (%.3g m) is %.3g m under the water at its nadir: the image shows "
+                    "the wave from inside (`thalassa sea` gives the sea's height)",
+                    scene.camera.height, depth);
+      stats.warnings.push_back(text);
+    }
+  }
   for (const std::string& warning : stats.warnings) print_error("warning: " + warning);
   const Image sun_sums = args.sun_sums.empty() ? Image{} : renderer.reference_sun_sums();
   if (!args.sun_sums.empty() && sun_sums.rgba.empty()) {

@@ -131,22 +131,6 @@ class ViewedScene {
   Scene scene_;
 };
 
-// The lowest height (m) of a camera flown by hand: kWaveClearance above the water under it, the
-// sea the renderer draws (its waves' anchor) answered on the CPU; made again when the wind (all
-// of the sea a viewer changes) or the anchor changes.
-class WaveFloor {
- public:
-  double at(const Scene& scene, const Geodetic& anchor) {
-    if (!sea_ || !(sea_->scene().ocean == scene.ocean) || sea_->wave_anchor().lat != anchor.lat ||
-        sea_->wave_anchor().lon != anchor.lon)
-      sea_.emplace(scene, anchor);
-    return sea_->at(scene.camera.lat, scene.camera.lon, scene.time).height + kWaveClearance;
-  }
-
- private:
-  std::optional<SeaState> sea_;
-};
-
 // A file name in the working folder for now (UTC): `pattern` is strftime's, e.g.
 // "thalassa_view_%Y%m%d_%H%M%S.exr".
 std::string timestamped_name(const char* pattern) {
@@ -584,7 +568,7 @@ int run_view(const ViewArgs& args) {
   double time_rate = 1.0;
   // The height flown (keys, panel, scene): the camera's, unless the water under it lifts it.
   double flown_height = viewed.scene().camera.height;
-  WaveFloor wave_floor;
+  SeaCache sea;
   std::string message;
   FlightRecorder recorder;
   bool record_from_start = !args.record.empty();
@@ -664,7 +648,8 @@ int run_view(const ViewArgs& args) {
     flown_height = next.camera.height;
     if (!playback.playing)
       next.camera.height =
-          std::max(next.camera.height, wave_floor.at(next, renderer->stats().wave_anchor));
+          std::max(next.camera.height,
+                   sea.under_camera(next, renderer->stats().wave_anchor) + kWaveClearance);
     try {
       viewed.update(next);
       renderer->set_scene(viewed.scene());

@@ -1186,6 +1186,7 @@ TEST_F(Cli, FlyWritesEveryFrameAsExrAndPng) {
     written.push_back(entry.path().filename());
   std::sort(written.begin(), written.end());
   EXPECT_EQ(written, expected);
+  EXPECT_EQ(r.err.find("under the water"), std::string::npos) << r.err;  // 2 m and up
   // Not a terminal: one line per frame on stderr.
   for (int i = 0; i < 5; ++i)
     EXPECT_NE(r.err.find(frame_file(i, "") + " [" + std::to_string(i + 1) + "/5]"),
@@ -1389,6 +1390,28 @@ TEST_F(Cli, SeaWritesTheSurfaceAtPointsAndTimesAsCsv) {
   EXPECT_EQ(read_csv(dir_ / "calm.csv")[0].at("height_m"), "0");
   ASSERT_EQ(run("sea --at 20,-150 --footprint 100 -o long.csv").status, 0);
   EXPECT_EQ(read_csv(dir_ / "long.csv")[0].at("height_m"), "0");
+}
+
+// A camera under a crest (0.3 m, where the default sea stands 0.77 m high at 8 s) draws the wave
+// from inside: `render` and `fly` say so, with how deep.
+TEST_F(Cli, RenderAndFlyWarnOfACameraUnderTheWater) {
+  Result r = run(
+      "render --set camera.height=0.3 --set time=8 -o low.exr --no-png --stats low.json " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: the camera (0.3 m) is 0.469 m under the water"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_json("low.json")["warnings"].size(), 1u);
+  r = run("render --set camera.height=1 --set time=8 -o high.exr --no-png " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("under the water"), std::string::npos) << r.err;
+  write("low.json", R"({"scene": {"time": 8}, "fps": 4, "duration": 0.5,
+      "keyframes": [{"time": 0, "camera": {"height": 0.3}}, {"time": 0.5, "camera": {"height": 0.3}}]})");
+  r = run("fly low.json -o out --stats fly.json " + kSmall);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("have the camera under the water, up to"), std::string::npos) << r.err;
+  const nlohmann::json stats = read_json("fly.json");
+  EXPECT_NEAR(stats["frames"][0]["camera_depth"].get<double>(), 0.469, 1e-3);
 }
 
 TEST_F(Cli, SeaRefusesBadPlacesTimesAndOutputs) {
