@@ -1,10 +1,12 @@
 // `thalassa sea`: the sea's surface at points and times as CSV (planet/sea_state.hpp), for a
 // buoy's record, a hull's motion or a comparison with wave measurements. No GL.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <iostream>
 #include <optional>
-#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -18,8 +20,9 @@ namespace {
 // Rows a run may write (--at points times --times steps): 1e7 rows are about 2 GB of CSV.
 constexpr double kMaxRows = 1e7;
 
-// The whole of `text` as one finite number; false otherwise.
+// The whole of `text` as one finite decimal number (no spaces, no hexadecimal); false otherwise.
 bool parse_number(const std::string& text, double& value) {
+  if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
   try {
     std::size_t used = 0;
     value = std::stod(text, &used);
@@ -66,13 +69,15 @@ std::string parse_times(const std::string& text, std::vector<double>& times) {
   const double count = std::floor((v[1] - v[0]) / v[2] + 1e-6) + 1.0;
   if (!(count <= kMaxRows))
     return "--times " + text + ": expected at most 1e7 times, got " + format_number(count);
-  for (long long i = 0; i < static_cast<long long>(count); ++i) times.push_back(v[0] + v[2] * i);
+  for (long long i = 0; i < static_cast<long long>(count); ++i)
+    times.push_back(std::min(v[0] + v[2] * i, v[1]));  // a last step within 1e-6 of one: STOP
   return "";
 }
 
-std::string csv_number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
+// `value` to `digits` significant digits.
+std::string csv_number(double value, int digits) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
   return buffer;
 }
 
@@ -154,25 +159,46 @@ int run_sea(const SeaArgs& args) {
   }
 
   const SeaState sea(scene, anchor);
-  std::ostringstream csv;
+  // Every point within the anchor's reach, before anything is written.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    try {
+      sea.at(points[i].first, points[i].second, times.front(), args.footprint);
+    } catch (const std::invalid_argument& error) {
+      std::string why = error.what();
+      why = why.substr(why.find("expected"));
+      return refuse((args.at.empty() ? std::string("the camera's nadir") : "--at " + args.at[i]) +
+                    ": " + why + (args.anchor.empty() ? "; --anchor names one near it" : ""));
+    }
+  }
+  // Row by row: a long series is not held in memory.
+  PendingOutputs files;
+  std::ofstream file;
+  if (!args.output.empty()) {
+    file.open(files.add(args.output));
+    if (!file) throw std::runtime_error("-o " + args.output + ": cannot write beside it");
+  }
+  std::ostream& csv = args.output.empty() ? std::cout : file;
   csv << "time_s,lat_deg,lon_deg,height_m,normal_east,normal_north,normal_up,velocity_east_m_s,"
          "velocity_north_m_s,velocity_up_m_s,height_rate_m_s,rest_east_m,rest_north_m,"
          "calm_scale,wakes,converged\n";
   for (double time : times) {
     for (const auto& [lat, lon] : points) {
       const SeaPoint p = sea.at(lat, lon, time, args.footprint);
-      for (double value : {time, lat, lon, p.height, p.normal.x, p.normal.y, p.normal.z,
-                           p.velocity.x, p.velocity.y, p.velocity.z, p.height_rate, p.rest_offset.x,
-                           p.rest_offset.y, p.calm_scale})
-        csv << csv_number(value) << ',';
+      // The place and time to 15 digits (1e-8 m; a time of 1e9 s to 1e-5 s, and 3 x 0.3 s
+      // reads 0.9), the rest to ten.
+      for (double value : {time, lat, lon}) csv << csv_number(value, 15) << ',';
+      for (double value :
+           {p.height, p.normal.x, p.normal.y, p.normal.z, p.velocity.x, p.velocity.y, p.velocity.z,
+            p.height_rate, p.rest_offset.x, p.rest_offset.y, p.calm_scale})
+        csv << csv_number(value, 10) << ',';
       csv << p.wakes << ',' << (p.converged ? 1 : 0) << '\n';
     }
   }
-  if (args.output.empty()) {
-    std::cout << csv.str() << std::flush;
-  } else {
-    PendingOutputs files;
-    write_text_atomically(files.add(args.output), csv.str());
+  csv.flush();
+  if (!csv) throw std::runtime_error("writing the CSV failed");
+  if (!args.output.empty()) {
+    file.close();
+    if (!file) throw std::runtime_error("-o " + args.output + ": writing failed");
     files.commit();
   }
   return kExitOk;

@@ -1,5 +1,6 @@
 #include "thalassa/planet/sea_state.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -20,16 +21,34 @@ namespace thalassa {
 namespace {
 
 // Newton's most iterations. From the rest point's first guess (the point itself) the map's
-// residual falls quadratically: 4-6 iterations on the default sea (tests/unit/sea_state_test.cpp).
+// residual falls quadratically: 3-5 iterations on the default sea (docs/sea_state.md).
 constexpr int kMaxIterations = 60;
+// m: Newton goes on while it gains, down to this; kSeaStateTolerance, ten thousand times more,
+// says whether it converged. A rest point that goes through ECEF and back to latitude and
+// longitude (calm areas, wakes) holds about 1e-9 m.
+constexpr double kNewtonTarget = 1e-12;
 // Halvings of a Newton step that does not lower the residual, before it is taken anyway.
 constexpr int kMaxStepHalvings = 12;
-// Below this det J the map p -> p + D_h(p) is taken as folded: a fixed-point step -F replaces
-// Newton's, and height_rate is dD_z/dt.
-constexpr double kFoldedJacobian = 1e-9;
-// m: the central differences' step of the calm areas' scale s (a C1 smoothstep over the fade,
-// at least metres: their error is step^2 |s'''| / 6, below 1e-7 for a 10 m fade).
-constexpr double kCalmGradientStep = 0.25;
+// Below this |det J| the map p -> p + D_h(p) is taken as singular (a fold's edge): a fixed-point
+// step -F replaces Newton's, and height_rate is dD_z/dt. Where det J < 0 (inside a fold) the map
+// is still locally invertible, and both are Newton's and the implicit derivative's.
+constexpr double kSingularJacobian = 1e-9;
+// m: the central differences' step of the calm areas' scale s, fade / 100 within [1 mm, 0.25 m].
+// s is a C1 smoothstep over the fade F: the error is step^2 |d3s/dd3| / 6 = 2e-4 |1 - scale| / F
+// (1/m) inside the fade, and up to about 0.03 |1 - scale| / F within a step of its ends, where
+// the second derivative jumps (against a gradient of 1.5 |1 - scale| / F mid-fade: 2 %).
+constexpr double kCalmGradientMinStep = 1e-3;
+constexpr double kCalmGradientMaxStep = 0.25;
+// The wakes' derivatives are central differences of their displacement: a step of 1 mm in space
+// (their waves are decimetres long and more: (k step)^2 / 6 below 1e-4, and the rest point's
+// 1e-9 m of rounding is 5e-7 of it) and 1e-4 s in time (a ship at 10 m/s moves 1 mm in it).
+constexpr double kWakeStep = 1e-3;
+constexpr double kWakeTimeStep = 1e-4;
+// m of chord: the farthest a queried point may be from the waves' anchor. A renderer keeps its
+// anchor while its camera stays within 100 km of it (kWaveAnchorKeepDistance) and sees waves
+// well inside the horizon from 20 km up (500 km). Within this reach the chart's axes stay a
+// rotation of the point's east and north.
+constexpr double kAnchorReach = 1.0e6;
 
 [[noreturn]] void refuse(const std::string& name, const std::string& expected, double got) {
   std::ostringstream message;
@@ -79,13 +98,22 @@ struct SeaState::Impl {
   Scene scene;
   Geodetic anchor;
   Planet planet;
+  glm::dvec3 anchor_ecef{0.0};  // m
   ocean::WaveSet waves;
   std::vector<CalmArea> calm;
+  double min_fade = 0.0;  // m: the calm areas' shortest fade
   std::vector<ShipWake> wakes;
 
   Impl(const Scene& s, const Geodetic& a)
-      : scene(s), anchor(a), planet(s.planet), waves(ocean::make_wave_set(s.ocean)) {
-    for (const CalmAreaSettings& c : s.calm_areas) calm.emplace_back(planet, c);
+      : scene(s),
+        anchor(a),
+        planet(s.planet),
+        anchor_ecef(planet.ecef(a.lat, a.lon, 0.0)),
+        waves(ocean::make_wave_set(s.ocean)) {
+    for (const CalmAreaSettings& c : s.calm_areas) {
+      calm.emplace_back(planet, c);
+      min_fade = calm.size() == 1 ? c.fade : std::min(min_fade, c.fade);
+    }
     for (const WakeSettings& w : s.wakes) wakes.emplace_back(planet, w);
   }
 };
@@ -110,6 +138,7 @@ struct Query {
   std::vector<GeoBounds> wake_bounds;  // where each can be non-zero
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
+  double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
 
   // The rest point at `offset` (m, the point's east and north) on the sea at rest, geodetic.
   Geodetic rest_point(glm::dvec2 offset) const {
@@ -122,7 +151,9 @@ struct Query {
     return calm_amplitude_scale(*calm, g.lat, g.lon);
   }
 
-  Field field(glm::dvec2 offset) const {
+  // The field at the rest offset; with `rates` false the wakes' time derivative is left out
+  // (Newton needs none: it is taken once, at the rest point found).
+  Field field(glm::dvec2 offset, bool rates = true) const {
     Field f;
     for (const FrameWave& w : waves) {
       const double theta = w.argument - w.wavenumber * glm::dot(w.direction, offset);
@@ -142,7 +173,7 @@ struct Query {
       }
       glm::dvec2 gradient(0.0);
       if (!flat) {
-        const double h = kCalmGradientStep;
+        const double h = calm_step;
         gradient.x =
             (calm_scale(offset + glm::dvec2(h, 0.0)) - calm_scale(offset - glm::dvec2(h, 0.0))) /
             (2.0 * h);
@@ -157,28 +188,49 @@ struct Query {
       f.calm_scale = s;
     }
     if (!wakes.empty()) {
-      // The wakes add their own trochoids, unscaled by s (ocean.vert): at the rest point, each
-      // branch a local plane wave whose argument is stationary in its ship's frame, so that at a
-      // fixed point it advances at omega = k . U e (ocean/kelvin_wake.hpp). Their derivatives
-      // are the plane waves' (the renderer's eq. 3, local_waves.glsl); the slow change of the
-      // branches' amplitude and wave vector over the wake is left out.
-      const Geodetic g = rest_point(offset);
-      for (std::size_t i = 0; i < wakes.size(); ++i) {
-        if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
-        const ocean::KelvinWakeSample sample = wakes[i]->sample(g.lat, g.lon, time);
-        bool any = false;
-        for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent}) {
-          if (!(w->amplitude > 0.0) || !(w->wavenumber > 0.0)) continue;
-          const double h = filter_weight(*ocean, w->wavelength, footprint) * w->amplitude;
-          if (!(h > 0.0)) continue;
-          add_trochoid(w->wave_vector / w->wavenumber, w->wavenumber, h, w->argument,
-                       w->angular_frequency, f);
-          any = true;
-        }
-        f.wakes += any ? 1 : 0;
+      // The wakes add their own trochoids, unscaled by s (ocean.vert). Their derivatives are
+      // central differences of their displacement, so that the normal and the rates are the
+      // heights': a branch's amplitude and wave vector change across the wake, which the
+      // renderer's eq. 3 leaves out (each branch a plane wave there, local_waves.glsl).
+      const glm::dvec3 d = wake_displacement(offset, time, &f.wakes);
+      if (f.wakes > 0) {
+        const double h = kWakeStep;
+        const double later = time + kWakeTimeStep, earlier = time - kWakeTimeStep;
+        f.d += d;
+        f.d_dx += (wake_displacement(offset + glm::dvec2(h, 0.0), time) -
+                   wake_displacement(offset - glm::dvec2(h, 0.0), time)) /
+                  (2.0 * h);
+        f.d_dy += (wake_displacement(offset + glm::dvec2(0.0, h), time) -
+                   wake_displacement(offset - glm::dvec2(0.0, h), time)) /
+                  (2.0 * h);
+        if (rates)
+          f.d_dt += (wake_displacement(offset, later) - wake_displacement(offset, earlier)) /
+                    (later - earlier);
       }
     }
     return f;
+  }
+
+  // The wakes' displacement (m, east-north-up) of the rest point at `offset` at time t (s): each
+  // branch a local trochoid (ShipWake::sample), weighted for the footprint; `count` gets the
+  // wakes whose waves reach it.
+  glm::dvec3 wake_displacement(glm::dvec2 offset, double t, int* count = nullptr) const {
+    const Geodetic g = rest_point(offset);
+    glm::dvec3 d(0.0);
+    for (std::size_t i = 0; i < wakes.size(); ++i) {
+      if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
+      const ocean::KelvinWakeSample sample = wakes[i]->sample(g.lat, g.lon, t);
+      bool any = false;
+      for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent}) {
+        if (!(w->amplitude > 0.0) || !(w->wavenumber > 0.0)) continue;
+        const double h = filter_weight(*ocean, w->wavelength, footprint) * w->amplitude;
+        if (!(h > 0.0)) continue;
+        d += glsl::TrochoidDisplacement(w->wave_vector / w->wavenumber, h, w->argument);
+        any = true;
+      }
+      if (count && any) ++*count;
+    }
+    return d;
   }
 };
 
@@ -218,6 +270,14 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     refuse("footprint", "finite metres >= 0", footprint);
 
   const Impl& sea = *impl_;
+  const double reach = glm::length(sea.planet.ecef(lat, lon, 0.0) - sea.anchor_ecef);
+  if (!(reach <= kAnchorReach)) {
+    std::ostringstream message;
+    message << "thalassa::SeaState: (lat, lon) = (" << lat << ", " << lon
+            << "): expected a point within 1000 km of the waves' anchor (" << sea.anchor.lat << ", "
+            << sea.anchor.lon << "), got one " << reach / 1e3 << " km from it";
+    throw std::invalid_argument(message.str());
+  }
   CameraSettings at_point;
   at_point.lat = lat;
   at_point.lon = lon;
@@ -248,36 +308,39 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
   if (!sea.calm.empty() || !q.wakes.empty()) {
     q.frame.emplace(sea.planet, lat, lon, 0.0);
     q.surface = nadir.sea_surface;
+    q.calm_step = std::clamp(sea.min_fade / 100.0, kCalmGradientMinStep, kCalmGradientMaxStep);
   }
 
-  // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0.
+  // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0, keeping the best iterate.
   glm::dvec2 offset(0.0);
-  Field f = q.field(offset);
+  Field f = q.field(offset, false);
   double r = residual(offset, f);
   SeaPoint out;
-  while (r > kSeaStateTolerance && out.iterations < kMaxIterations) {
+  while (r > kNewtonTarget && out.iterations < kMaxIterations) {
     ++out.iterations;
     const glm::dmat2 jacobian(1.0 + f.d_dx.x, f.d_dx.y, f.d_dy.x, 1.0 + f.d_dy.y);
-    const double det = glm::determinant(jacobian);
     const glm::dvec2 residual_vector = offset + glm::dvec2(f.d);
-    glm::dvec2 step =
-        det > kFoldedJacobian ? -(glm::inverse(jacobian) * residual_vector) : -residual_vector;
+    glm::dvec2 step = std::abs(glm::determinant(jacobian)) > kSingularJacobian
+                          ? -(glm::inverse(jacobian) * residual_vector)
+                          : -residual_vector;
     glm::dvec2 next = offset + step;
-    Field next_field = q.field(next);
+    Field next_field = q.field(next, false);
     double next_r = residual(next, next_field);
     for (int halving = 0; halving < kMaxStepHalvings && !(next_r < r); ++halving) {
       step *= 0.5;
       next = offset + step;
-      next_field = q.field(next);
+      next_field = q.field(next, false);
       next_r = residual(next, next_field);
     }
-    if (!std::isfinite(next_r)) break;
-    if (!(next_r < r) && out.iterations > 1) break;  // no progress: keep the best iterate
+    if (!(next_r < r)) break;  // no gain: the best iterate stays
+    const bool stalled = r <= kSeaStateTolerance && next_r > 0.5 * r;  // at the rounding's floor
     offset = next;
     f = next_field;
     r = next_r;
+    if (stalled) break;
   }
   out.converged = r <= kSeaStateTolerance;
+  if (!q.wakes.empty()) f = q.field(offset);  // with the wakes' rates
 
   out.height = f.d.z;
   const glm::dvec3 tangent_x = glm::dvec3(1.0, 0.0, 0.0) + f.d_dx;
@@ -289,7 +352,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
   const glm::dmat2 jacobian(tangent_x.x, tangent_x.y, tangent_y.x, tangent_y.y);
   const double det = glm::determinant(jacobian);
   out.height_rate = f.d_dt.z;
-  if (std::abs(det) > kFoldedJacobian) {
+  if (std::abs(det) > kSingularJacobian) {
     const glm::dvec2 drift = -(glm::inverse(jacobian) * glm::dvec2(f.d_dt));
     out.height_rate += f.d_dx.z * drift.x + f.d_dy.z * drift.y;
   }

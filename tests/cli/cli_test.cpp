@@ -1418,6 +1418,11 @@ TEST_F(Cli, SeaRefusesBadPlacesTimesAndOutputs) {
   expect_invalid(run("sea --at 91,0 -o a.csv"), {"--at 91,0", "LAT in [-90, 90]"});
   expect_invalid(run("sea --at 20 -o a.csv"), {"--at 20", "LAT,LON"});
   expect_invalid(run("sea --at 20,x -o a.csv"), {"--at 20,x"});
+  expect_invalid(run("sea --at ' 20,-150' -o a.csv"), {"--at  20,-150", "LAT,LON"});
+  expect_invalid(run("sea --at 0x14,-150 -o a.csv"), {"--at 0x14,-150"});
+  // Another chart's sea: the default anchor is the camera's (20 N 150 W).
+  expect_invalid(run("sea --at 0,0 -o a.csv"),
+                 {"--at 0,0", "within 1000 km of the waves' anchor (20, -150)", "--anchor"});
   expect_invalid(run("sea --times 5:1:1 -o a.csv"), {"--times 5:1:1", "START <= STOP"});
   expect_invalid(run("sea --times 0:1:0 -o a.csv"), {"--times", "STEP > 0"});
   expect_invalid(run("sea --times 0:1e9:1e-3 -o a.csv"), {"--times", "at most 1e7"});

@@ -178,6 +178,7 @@ TEST(RendererSetScene, KeepsTheWavesAnchorWithinItsDistance) {
   // scene's time, not a new SeaState's of the moved scene (planet/sea_state.hpp).
   {
     const SeaState sea = renderer.sea_state();
+    EXPECT_EQ(sea.wave_anchor().lat, anchor.lat);
     EXPECT_EQ(sea.wave_anchor().lon, anchor.lon);
     const double lat = moved.camera.lat, lon = moved.camera.lon;
     EXPECT_EQ(sea.at(lat, lon).height, SeaState(moved, anchor).at(lat, lon, moved.time).height);

@@ -13,9 +13,10 @@
 //
 // Trochoids move the water sideways: the particle at the surface above a point rests elsewhere.
 // SeaState::at finds that rest point by Newton's method on the horizontal map p -> p + D_h(p)
-// (to 1e-10 m) and evaluates everything there, so the height is the surface's height above the
-// point itself (Eulerian), not the height of the particle that rests below it. A single trochoid's
-// mean height over a wavelength is then -k h^2 / 2, below the sea at rest (tested).
+// (to 1e-12 m where it gains, kSeaStateTolerance at least) and evaluates everything there, so the
+// height is the surface's height above the point itself (Eulerian), not the height of the particle
+// that rests below it. A single trochoid's mean height over a wavelength is then -k h^2 / 2, below
+// the sea at rest (tested).
 //
 // Frame and units: the point's east-north-up frame (x east, y north, z up along the ellipsoid's
 // normal), metres, seconds. The waves displace each rest point in its own tangent frame; the rest
@@ -24,11 +25,16 @@
 // below what is resolved here and left out.
 //
 // Consistency with a Renderer: the waves' chart depends on its anchor, so a query agrees with the
-// frames only with the renderer's anchor (Renderer::sea_state; RenderStats::wave_anchor). The
-// renderer evaluates the waves in its camera's nadir frame, mapped affinely into the chart; this
-// evaluates them in the asked point's, mapped the same way: the two differ by the chart's
-// curvature terms, d (D / R)^2 for a point d from the camera's nadir and D from the anchor (5 mm
-// at d = 1 km, D = 14 km), a shift of the whole wave field, not of its heights.
+// frames only with the renderer's anchor (Renderer::sea_state; RenderStats::wave_anchor), and
+// points farther than 1000 km from the anchor are refused. The renderer evaluates the waves in its
+// camera's nadir frame, mapped affinely into the chart; this evaluates them in the asked point's,
+// mapped the same way: the two places in the chart differ by about d^2 D / 2 R^2 for a point d
+// from the camera's nadir and D from the anchor (0.2 mm at d = 1 km and D = 14 km, 12 cm at
+// d = 10 km and D = 100 km), a shift of the wave field, not of its heights. Where they differ
+// otherwise: the GPU reads s from a chart of the areas in view, bilinearly (within
+// calm_chart_distance_tolerance of the exact s here, planet/local_features.hpp), and shades with
+// eq. 3's normals, which leave out the gradient of s and take each wake branch as a plane wave;
+// the normals here are the heights' own.
 #pragma once
 
 #include <memory>
@@ -46,8 +52,9 @@ struct SeaPoint {
   // m above the sea at rest (the planet's surface) at the point, along its up.
   double height = 0.0;
   // The surface's unit normal, east-north-up: eq. 3's cross product of the rest point's tangents
-  // (1, 0, 0) + dD/dx and (0, 1, 0) + dD/dy, the calm areas' gradient of s included; its z is
-  // negative where the surface folds over (the trochoids' sum loops).
+  // (1, 0, 0) + dD/dx and (0, 1, 0) + dD/dy, with the calm areas' gradient of s and the wakes'
+  // change across them; its z is negative where the surface folds over (the trochoids' sum
+  // loops: det J < 0).
   glm::dvec3 normal{0.0, 0.0, 1.0};
   // m/s, east-north-up: the velocity of the water particle at the surface there (the trochoids'
   // orbital motion, the wakes' moving with their ships).
@@ -68,8 +75,10 @@ struct SeaPoint {
   bool converged = true;
 };
 
-// Newton's tolerance on the horizontal map: |p + D_h(p) - point| at most this, m.
-inline constexpr double kSeaStateTolerance = 1e-10;
+// Newton's tolerance on the horizontal map: |p + D_h(p) - point| at most this, m, for
+// SeaPoint::converged (it goes on while it gains, to 1e-12 m; through latitude and longitude a
+// rest point holds about 1e-9 m).
+inline constexpr double kSeaStateTolerance = 1e-8;
 
 class SeaState {
  public:
@@ -88,9 +97,10 @@ class SeaState {
   const Scene& scene() const;
   const Geodetic& wave_anchor() const;  // degrees, height 0
 
-  // The sea at (lat, lon: degrees; lat in [-90, 90], lon finite) at `time` (s, the scene's clock,
-  // [0, kSceneMaxTime]), with every wave, or weighted for a footprint of `footprint` m (>= 0; 0:
-  // every wave). Throws std::invalid_argument naming the argument for anything else.
+  // The sea at (lat, lon: degrees; lat in [-90, 90], lon finite, within 1000 km of the anchor) at
+  // `time` (s, the scene's clock, [0, kSceneMaxTime]), with every wave, or weighted for a
+  // footprint of `footprint` m (>= 0; 0: every wave). Throws std::invalid_argument naming the
+  // argument for anything else. (A moved-from SeaState may only be assigned or destroyed.)
   SeaPoint at(double lat, double lon, double time, double footprint = 0.0) const;
   // At the scene's time, every wave.
   SeaPoint at(double lat, double lon) const;
