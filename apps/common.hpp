@@ -64,8 +64,10 @@ class PendingOutputs {
 };
 
 // The sea of the scenes a command draws, answered on the CPU (planet/sea_state.hpp) in the
-// renderer's waves' anchor; made again when the waves or the anchor change (a flight and the
-// viewer change nothing else of the sea: not its wakes, calm areas or planet).
+// renderer's waves' anchor (or, for a camera more than kWaveAnchorKeepDistance from it, the one
+// the renderer will take: the lattice point nearest it); made again when the waves or the anchor
+// change (a flight and the viewer change nothing else of the sea: not its wakes, calm areas or
+// planet).
 class SeaCache {
  public:
   // The water's height (m above the sea at rest) under the camera of `scene` at its time, every

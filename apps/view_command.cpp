@@ -646,7 +646,7 @@ int run_view(const ViewArgs& args) {
     // A crest under the camera lifts it, and lets it down again as it passes: the camera rides
     // the waves at kWaveClearance. Not a flight played: that is `fly`'s camera, as keyed.
     flown_height = next.camera.height;
-    if (!playback.playing)
+    if (!playback.playing && next.camera.height < kSpaceModeHeight)  // no wave reaches higher
       next.camera.height =
           std::max(next.camera.height,
                    sea.under_camera(next, renderer->stats().wave_anchor) + kWaveClearance);
