@@ -100,7 +100,8 @@ class SeaState {
   // The sea at (lat, lon: degrees; lat in [-90, 90], lon finite, within 1000 km of the anchor) at
   // `time` (s, the scene's clock, [0, kSceneMaxTime]), with every wave, or weighted for a
   // footprint of `footprint` m (>= 0; 0: every wave). Throws std::invalid_argument naming the
-  // argument for anything else. (A moved-from SeaState may only be assigned or destroyed.)
+  // argument for anything else, and std::runtime_error rather than return a value that is not
+  // finite (none is known). (A moved-from SeaState may only be assigned or destroyed.)
   SeaPoint at(double lat, double lon, double time, double footprint = 0.0) const;
   // At the scene's time, every wave.
   SeaPoint at(double lat, double lon) const;
