@@ -139,12 +139,8 @@ double SeaCache::under_camera(const Scene& scene, const Geodetic& anchor) {
   // An anchor the camera has left behind (a viewer's frame before the renderer takes the new
   // scene) is replaced as the renderer replaces it: past kWaveAnchorKeepDistance, the lattice
   // point nearest the camera.
-  Geodetic chart = anchor;
-  const Planet planet(scene.planet);
-  const double distance = glm::length(planet.ecef(scene.camera.lat, scene.camera.lon, 0.0) -
-                                      planet.ecef(anchor.lat, anchor.lon, 0.0));
-  if (!(distance <= kWaveAnchorKeepDistance))
-    chart = nearest_wave_anchor(scene.camera.lat, scene.camera.lon);
+  const Geodetic chart =
+      kept_wave_anchor(Planet(scene.planet), anchor, scene.camera.lat, scene.camera.lon);
   if (!sea_ || !(sea_->scene().ocean == scene.ocean) || sea_->wave_anchor().lat != chart.lat ||
       sea_->wave_anchor().lon != chart.lon)
     sea_.emplace(scene, chart);

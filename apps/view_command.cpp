@@ -628,9 +628,11 @@ int run_view(const ViewArgs& args) {
     if (time_running) next.time = std::min(next.time + dt * time_rate, kSceneMaxTime);
     bool screenshot = presses.screenshot;
     bool record = presses.toggle_record;
+    // The last frame's statistics: the panel's, and the waves' anchor the renderer holds.
+    const RenderStats last_stats = renderer->stats();
     if (panel)
-      draw_panel(renderer->stats(), wall_ms, viewed, next, time_running, time_rate, screenshot,
-                 record, recorder, playback, message);
+      draw_panel(last_stats, wall_ms, viewed, next, time_running, time_rate, screenshot, record,
+                 recorder, playback, message);
     if (playback.playing) {
       // The flight's camera, sun and time at its own time, which the clock moves, and its
       // exposure where it animates one; the sea's and the image's other keys stay the viewer's.
@@ -647,9 +649,8 @@ int run_view(const ViewArgs& args) {
     // the waves at kWaveClearance. Not a flight played: that is `fly`'s camera, as keyed.
     flown_height = next.camera.height;
     if (!playback.playing && next.camera.height < kSpaceModeHeight)  // no wave reaches higher
-      next.camera.height =
-          std::max(next.camera.height,
-                   sea.under_camera(next, renderer->stats().wave_anchor) + kWaveClearance);
+      next.camera.height = std::max(
+          next.camera.height, sea.under_camera(next, last_stats.wave_anchor) + kWaveClearance);
     try {
       viewed.update(next);
       renderer->set_scene(viewed.scene());

@@ -15,6 +15,14 @@ Geodetic nearest_wave_anchor(double lat_deg, double lon_deg) {
   return anchor;
 }
 
+Geodetic kept_wave_anchor(const Planet& planet, const Geodetic& anchor, double lat_deg,
+                          double lon_deg) {
+  const double distance =
+      glm::length(planet.ecef(lat_deg, lon_deg, 0.0) - planet.ecef(anchor.lat, anchor.lon, 0.0));
+  if (distance <= kWaveAnchorKeepDistance) return {anchor.lat, anchor.lon, 0.0};
+  return nearest_wave_anchor(lat_deg, lon_deg);
+}
+
 ocean::SeaSurface planet_sea_surface(const Planet& planet, double lat_deg, double lon_deg) {
   const glm::dvec3 n = planet.ecef(lat_deg, lon_deg, 0.0);
   const EnuBasis enu = planet.enu_basis(lat_deg, lon_deg);

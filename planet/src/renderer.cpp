@@ -269,12 +269,8 @@ struct Renderer::Impl {
   std::optional<Geodetic> wave_anchor(const Scene& next, bool has_scene) const {
     if (renderer_options.wave_anchor) return renderer_options.wave_anchor;
     if (!has_scene || next.camera.height >= kSpaceModeHeight) return std::nullopt;
-    const Planet planet(next.planet);
-    const double distance =
-        glm::length(planet.ecef(next.camera.lat, next.camera.lon, 0.0) -
-                    planet.ecef(nadir.wave_anchor.lat, nadir.wave_anchor.lon, 0.0));
-    if (distance <= kWaveAnchorKeepDistance) return nadir.wave_anchor;
-    return std::nullopt;
+    return kept_wave_anchor(Planet(next.planet), nadir.wave_anchor, next.camera.lat,
+                            next.camera.lon);
   }
 
   // Makes what `next` needs that the current scene does not hold; changes nothing of the

@@ -66,6 +66,20 @@ TEST(NadirFrame, WaveAnchorIsTheNearestLatticePoint) {
   EXPECT_DOUBLE_EQ(c.lon, 33.25);
 }
 
+// A camera keeps its anchor within kWaveAnchorKeepDistance (100 km of chord) and takes the
+// lattice point nearest it beyond: 0.8 degree of latitude (89 km) keeps it, 1 degree (111 km)
+// does not.
+TEST(NadirFrame, KeptWaveAnchorWithinItsDistance) {
+  const Planet planet;
+  const Geodetic anchor{20.0, -150.0, 0.0};
+  const Geodetic kept = kept_wave_anchor(planet, anchor, 20.8, -150.1);
+  EXPECT_EQ(kept.lat, 20.0);
+  EXPECT_EQ(kept.lon, -150.0);
+  const Geodetic moved = kept_wave_anchor(planet, anchor, 21.0, -150.1);
+  EXPECT_EQ(moved.lat, 21.0);
+  EXPECT_EQ(moved.lon, -150.0);
+}
+
 // A 1 mm move of the camera moves the nadir's chart coordinates by 1 mm along the nadir's axes in
 // the chart, in double; the axes are a rotation to ~1e-5 within a lattice cell; the same point
 // of the planet gets the same chart coordinates from two nadirs (the waves stay put).

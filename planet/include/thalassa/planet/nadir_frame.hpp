@@ -48,6 +48,12 @@ inline constexpr double kWaveAnchorKeepDistance = 100e3;
 // The lattice point nearest (lat, lon) (degrees; height 0), longitude in (-180, 180].
 Geodetic nearest_wave_anchor(double lat_deg, double lon_deg);
 
+// The anchor a camera at (lat, lon) (degrees) keeps on `planet`: `anchor` while the camera is
+// within kWaveAnchorKeepDistance of it (chord, m), else the lattice point nearest the camera
+// (Renderer::set_scene; a host asking for the water under the next frame's camera before it).
+Geodetic kept_wave_anchor(const Planet& planet, const Geodetic& anchor, double lat_deg,
+                          double lon_deg);
+
 struct NadirFrame {
   Geodetic nadir;                 // the camera's latitude and longitude (degrees), height 0
   double camera_height = 0.0;     // m above the sea
