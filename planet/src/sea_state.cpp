@@ -161,10 +161,10 @@ struct Query {
       add_trochoid(w.direction, w.wavenumber, w.amplitude, theta, w.angular_frequency, f);
     }
     if (!frame) return f;
+    const Geodetic g = rest_point(offset);  // what the calm areas and the wakes are placed by
     if (!calm->empty()) {
       // s multiplies every wave's amplitude (ocean.vert): D = s B, dD = s dB + B ds. Its gradient
       // is 0 outside the areas (s = 1) and deep inside (s = scale): s is C1, flat at both ends.
-      const Geodetic g = rest_point(offset);
       double s = 1.0;
       bool flat = true;
       for (const CalmArea& area : *calm) {
@@ -193,30 +193,29 @@ struct Query {
       // central differences of their displacement, so that the normal and the rates are the
       // heights': a branch's amplitude and wave vector change across the wake, which the
       // renderer's eq. 3 leaves out (each branch a plane wave there, local_waves.glsl).
-      const glm::dvec3 d = wake_displacement(offset, time, &f.wakes);
+      const glm::dvec3 d = wake_displacement(g, time, &f.wakes);
       if (f.wakes > 0) {
         const double h = kWakeStep;
         const double later = time + kWakeTimeStep, earlier = time - kWakeTimeStep;
         f.d += d;
-        f.d_dx += (wake_displacement(offset + glm::dvec2(h, 0.0), time) -
-                   wake_displacement(offset - glm::dvec2(h, 0.0), time)) /
+        f.d_dx += (wake_displacement(rest_point(offset + glm::dvec2(h, 0.0)), time) -
+                   wake_displacement(rest_point(offset - glm::dvec2(h, 0.0)), time)) /
                   (2.0 * h);
-        f.d_dy += (wake_displacement(offset + glm::dvec2(0.0, h), time) -
-                   wake_displacement(offset - glm::dvec2(0.0, h), time)) /
+        f.d_dy += (wake_displacement(rest_point(offset + glm::dvec2(0.0, h)), time) -
+                   wake_displacement(rest_point(offset - glm::dvec2(0.0, h)), time)) /
                   (2.0 * h);
         if (rates)
-          f.d_dt += (wake_displacement(offset, later) - wake_displacement(offset, earlier)) /
-                    (later - earlier);
+          f.d_dt +=
+              (wake_displacement(g, later) - wake_displacement(g, earlier)) / (later - earlier);
       }
     }
     return f;
   }
 
-  // The wakes' displacement (m, east-north-up) of the rest point at `offset` at time t (s): each
-  // branch a local trochoid (ShipWake::sample), weighted for the footprint; `count` gets the
-  // wakes whose waves reach it.
-  glm::dvec3 wake_displacement(glm::dvec2 offset, double t, int* count = nullptr) const {
-    const Geodetic g = rest_point(offset);
+  // The wakes' displacement (m, east-north-up) of the rest point g at time t (s): each branch a
+  // local trochoid (ShipWake::sample), weighted for the footprint; `count` gets the wakes whose
+  // waves reach it.
+  glm::dvec3 wake_displacement(const Geodetic& g, double t, int* count = nullptr) const {
     glm::dvec3 d(0.0);
     for (std::size_t i = 0; i < wakes.size(); ++i) {
       if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
