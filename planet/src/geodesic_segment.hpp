@@ -19,10 +19,19 @@ namespace thalassa::detail {
 struct SegmentFoot {
   double lat = 0.0, lon = 0.0;  // degrees: the nearest point of the segment
   double distance = 0.0;        // m: geodesic distance from the point to it
-  double along = 0.0;           // m: geodesic distance from A to it (0 .. |AB|)
+  double along = 0.0;           // m: geodesic distance from A to it (0 .. length)
+  double length = 0.0;          // m: |AB|; along == length exactly for a foot at B
   double azimuth = 0.0;         // degrees: azimuth of the segment A -> B at the foot
   double point_azimuth = 0.0;   // degrees: azimuth of the geodesic foot -> point at the foot
+  // degrees: azimuth of the geodesic foot -> point at the point (its direction there, away from
+  // the segment; the gradient of the distance to the segment for a foot inside it).
+  double azimuth_at_point = 0.0;
+  bool at_end = false;  // the foot is A or B (the point is beyond the segment's end)
+  int iterations = 0;   // of the gnomonic projection's fixed point (kFootMaxIterations at most)
 };
+
+// The most iterations of the gnomonic fixed point: 1-3 from the segment's middle.
+inline constexpr int kFootMaxIterations = 30;
 
 // Segments must be shorter than about 1/4 of a meridian (the gnomonic centred on them must see
 // both ends); callers check their lengths.

@@ -40,9 +40,11 @@ constexpr double kSingularJacobian = 1e-9;
 // the second derivative jumps (against a gradient of 1.5 |1 - scale| / F mid-fade: 2 %).
 constexpr double kCalmGradientMinStep = 1e-3;
 constexpr double kCalmGradientMaxStep = 0.25;
-// The wakes' derivatives are central differences of their displacement: a step of 1 mm in space
-// (their waves are decimetres long and more: (k step)^2 / 6 below 1e-4, and the rest point's
-// 1e-9 m of rounding is 5e-7 of it) and 1e-4 s in time (a ship at 10 m/s moves 1 mm in it).
+// The wakes' derivatives are central differences of their displacement: a step of 1 mm in space,
+// taken in the ship frame's coordinates (their waves are decimetres long and more: (k step)^2 / 6
+// below 1e-4), and 1e-4 s in time (a ship at 10 m/s moves 1 mm in it; the track is searched at
+// each time, and the rest point's 1e-9 m of rounding through latitude and longitude is 1e-6 of the
+// step).
 constexpr double kWakeStep = 1e-3;
 constexpr double kWakeTimeStep = 1e-4;
 // m of chord: the farthest a queried point may be from the waves' anchor. A renderer keeps its
@@ -135,8 +137,10 @@ struct Query {
   double time = 0.0;
   double footprint = 0.0;
   std::vector<FrameWave> waves;        // the scene's, in the point's frame
-  std::vector<const ShipWake*> wakes;  // those with a wake somewhere at `time`
-  std::vector<GeoBounds> wake_bounds;  // where each can be non-zero
+  // The wakes with waves somewhere at `time`, where each can be non-zero, and each at the times
+  // of the rates' difference.
+  std::vector<ShipWake::Instant> wakes, wakes_later, wakes_earlier;
+  std::vector<GeoBounds> wake_bounds;
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
   double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
@@ -192,43 +196,56 @@ struct Query {
       // The wakes add their own trochoids, unscaled by s (ocean.vert). Their derivatives are
       // central differences of their displacement, so that the normal and the rates are the
       // heights': a branch's amplitude and wave vector change across the wake, which the
-      // renderer's eq. 3 leaves out (each branch a plane wave there, local_waves.glsl).
-      const glm::dvec3 d = wake_displacement(g, time, &f.wakes);
-      if (f.wakes > 0) {
+      // renderer's eq. 3 leaves out (each branch a plane wave there, local_waves.glsl). The
+      // track is searched once, at the rest point: the differences along east and north move
+      // its ship-frame coordinates by their gradients (ShipWake::Coordinates), exact to
+      // O(step^2 / R) against a search at each offset.
+      for (std::size_t i = 0; i < wakes.size(); ++i) {
+        if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
+        const std::optional<ShipWake::Coordinates> c = wakes[i].coordinates(g.lat, g.lon);
+        if (!c) continue;
+        bool reaches = false;
+        f.d += wake_displacement(wakes[i].sample(*c), &reaches);
+        if (!reaches) continue;
+        ++f.wakes;
         const double h = kWakeStep;
-        const double later = time + kWakeTimeStep, earlier = time - kWakeTimeStep;
-        f.d += d;
-        f.d_dx += (wake_displacement(rest_point(offset + glm::dvec2(h, 0.0)), time) -
-                   wake_displacement(rest_point(offset - glm::dvec2(h, 0.0)), time)) /
-                  (2.0 * h);
-        f.d_dy += (wake_displacement(rest_point(offset + glm::dvec2(0.0, h)), time) -
-                   wake_displacement(rest_point(offset - glm::dvec2(0.0, h)), time)) /
-                  (2.0 * h);
-        if (rates)
-          f.d_dt +=
-              (wake_displacement(g, later) - wake_displacement(g, earlier)) / (later - earlier);
+        glm::dvec3 along[2];
+        for (int axis = 0; axis < 2; ++axis) {
+          ShipWake::Coordinates plus = *c, minus = *c;
+          plus.behind += h * c->behind_gradient[axis];
+          plus.lateral += h * c->lateral_gradient[axis];
+          minus.behind -= h * c->behind_gradient[axis];
+          minus.lateral -= h * c->lateral_gradient[axis];
+          along[axis] = (wake_displacement(wakes[i].sample(plus)) -
+                         wake_displacement(wakes[i].sample(minus))) /
+                        (2.0 * h);
+        }
+        f.d_dx += along[0];
+        f.d_dy += along[1];
+        if (rates) {
+          const ShipWake::Instant& later = wakes_later[i];
+          const ShipWake::Instant& earlier = wakes_earlier[i];
+          f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
+                     wake_displacement(earlier.sample(g.lat, g.lon))) /
+                    (later.time() - earlier.time());
+        }
       }
     }
     return f;
   }
 
-  // The wakes' displacement (m, east-north-up) of the rest point g at time t (s): each branch a
-  // local trochoid (ShipWake::sample), weighted for the footprint; `count` gets the wakes whose
-  // waves reach it.
-  glm::dvec3 wake_displacement(const Geodetic& g, double t, int* count = nullptr) const {
+  // One wake's displacement (m, east-north-up) from its two branches at a point
+  // (ShipWake::Instant::sample), each a local trochoid weighted for the footprint; `reaches`
+  // says whether any of it is left.
+  glm::dvec3 wake_displacement(const ocean::KelvinWakeSample& sample,
+                               bool* reaches = nullptr) const {
     glm::dvec3 d(0.0);
-    for (std::size_t i = 0; i < wakes.size(); ++i) {
-      if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
-      const ocean::KelvinWakeSample sample = wakes[i]->sample(g.lat, g.lon, t);
-      bool any = false;
-      for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent}) {
-        if (!(w->amplitude > 0.0) || !(w->wavenumber > 0.0)) continue;
-        const double h = filter_weight(*ocean, w->wavelength, footprint) * w->amplitude;
-        if (!(h > 0.0)) continue;
-        d += glsl::TrochoidDisplacement(w->wave_vector / w->wavenumber, h, w->argument);
-        any = true;
-      }
-      if (count && any) ++*count;
+    for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent}) {
+      if (!(w->amplitude > 0.0) || !(w->wavenumber > 0.0)) continue;
+      const double h = filter_weight(*ocean, w->wavelength, footprint) * w->amplitude;
+      if (!(h > 0.0)) continue;
+      d += glsl::TrochoidDisplacement(w->wave_vector / w->wavenumber, h, w->argument);
+      if (reaches) *reaches = true;
     }
     return d;
   }
@@ -300,9 +317,12 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
                        h, phases[i], w.angular_frequency});
   }
   for (const ShipWake& wake : sea.wakes) {
-    GeoBounds bounds = wake.bounds(time);
+    ShipWake::Instant now = wake.at(time);
+    GeoBounds bounds = now.bounds();
     if (bounds.empty()) continue;
-    q.wakes.push_back(&wake);
+    q.wakes.push_back(std::move(now));
+    q.wakes_later.push_back(wake.at(time + kWakeTimeStep));
+    q.wakes_earlier.push_back(wake.at(time - kWakeTimeStep));
     q.wake_bounds.push_back(bounds);
   }
   if (!sea.calm.empty() || !q.wakes.empty()) {

@@ -1,6 +1,7 @@
 // thalassa — a ship's wake placed by latitude and longitude (ship_wake.hpp).
 #include "thalassa/planet/ship_wake.hpp"
 
+#include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/Geodesic.hpp>
 #include <GeographicLib/GeodesicLine.hpp>
 
@@ -21,6 +22,9 @@ namespace {
 constexpr double kDegrees = 180.0 / std::numbers::pi;
 // The fastest ship accepted, m/s (194 knots: beyond any displacement hull; the scene's range).
 constexpr double kMaxShipSpeed = 100.0;
+// m: closer to the track than this a point's coordinate gradients are the foot's e and n (the
+// azimuth of the geodesic from the foot is not defined on the track).
+constexpr double kOnTrack = 1e-3;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
   throw std::invalid_argument("thalassa::ShipWake" + (name.empty() ? "" : " \"" + name + "\"") +
@@ -32,10 +36,6 @@ bool valid_point(double lat, double lon) {
          std::abs(lon) <= 180.0;
 }
 
-struct PolyPoint {
-  double lat, lon;
-};
-
 }  // namespace
 
 struct ShipWake::Impl {
@@ -45,17 +45,19 @@ struct ShipWake::Impl {
   explicit Impl(double a, double f) : geodesic(a, f) {}
 
   // The past track from the ship back to `length` astern (or the track's start): points from
-  // the newest (the ship) to the oldest, and the distance sailed since the start (inf for the
-  // position form).
+  // the newest (the ship) to the oldest, the geodesic lengths (m) between consecutive ones, and
+  // the distance sailed since the start (inf for the position form).
   double past(const WakeSettings& s, const State& st, double time, double length,
-              std::vector<PolyPoint>& out) const {
+              std::vector<GeoPoint>& out, std::vector<double>& lengths) const {
     out.clear();
+    lengths.clear();
     out.push_back({st.lat, st.lon});
     if (s.track.empty()) {
       const GeographicLib::GeodesicLine line = geodesic.Line(st.lat, st.lon, st.heading + 180.0);
       double lat, lon;
       line.Position(length, lat, lon);
       out.push_back({lat, lon});
+      lengths.push_back(length);
       return std::numeric_limits<double>::infinity();
     }
     // The segment the ship is on: the last point with time <= t.
@@ -70,7 +72,10 @@ struct ShipWake::Impl {
       const TrackPoint& p = s.track[j];
       double d;
       geodesic.Inverse(lat0, lon0, p.lat, p.lon, d);
-      if (d > 0.0) out.push_back({p.lat, p.lon});
+      if (d > 0.0) {
+        out.push_back({p.lat, p.lon});
+        lengths.push_back(d);
+      }
       sailed_back += d;
       lat0 = p.lat;
       lon0 = p.lon;
@@ -160,87 +165,153 @@ ShipWake::State ShipWake::ship_at(double time) const {
   return st;
 }
 
-std::optional<ShipWake::Coordinates> ShipWake::coordinates(double lat, double lon,
-                                                           double time) const {
-  if (!valid_point(lat, lon)) return std::nullopt;
+struct ShipWake::Instant::Data {
+  GeographicLib::Geodesic geodesic;
+  ocean::KelvinWakeParams params;  // speed: the ship's at the instant
+  std::vector<GeoPoint> past;      // the ship first, then the track's points passed
+  std::vector<double> length;      // m: of the segment from past[j] (newer) to past[j + 1]
+  std::vector<double> behind;      // m: b at past[j], the sum of the lengths before it
+  std::vector<glm::dvec3> ecef;    // m: past[j] on the ellipsoid, for the segments' lower bounds
+  double sailed = 0.0;             // m since the track's start (inf for the position form)
+  double half_width = 0.0;         // m; 0 where there is no wake
+  bool wake = false;               // a ship fast enough to make waves
+  GeographicLib::Geocentric earth;
+  Data(const GeographicLib::Geodesic& g, const ocean::KelvinWakeParams& p)
+      : geodesic(g), params(p), earth(g.EquatorialRadius(), g.Flattening()) {}
+};
+
+ShipWake::Instant::Instant(std::shared_ptr<const Data> data) : data_(std::move(data)) {}
+
+ShipWake::Instant ShipWake::at(double time) const {
+  auto data = std::make_shared<Instant::Data>(impl_->geodesic, params_);
   const State st = ship_at(time);
-  if (!st.present || st.speed < ocean::kMinimumWakeSpeed) return std::nullopt;
-  ocean::KelvinWakeParams p = params_;
-  p.speed = st.speed;
-  const double width = ocean::kelvin_wake_half_width(p);
-  std::vector<PolyPoint> poly;
-  const double sailed = impl_->past(settings_, st, time, p.length, poly);
+  if (st.present) {
+    data->params.speed = st.speed;
+    data->sailed = impl_->past(settings_, st, time, params_.length, data->past, data->length);
+    double behind = 0.0;
+    for (std::size_t j = 0; j < data->past.size(); ++j) {
+      glm::dvec3 x;
+      data->earth.Forward(data->past[j].lat, data->past[j].lon, 0.0, x.x, x.y, x.z);
+      data->ecef.push_back(x);
+      data->behind.push_back(behind);
+      if (j < data->length.size()) behind += data->length[j];
+    }
+    data->wake = st.speed >= ocean::kMinimumWakeSpeed;
+    if (data->wake) data->half_width = ocean::kelvin_wake_half_width(data->params);
+  }
+  Instant instant(std::move(data));
+  instant.time_ = time;
+  instant.ship_ = st;
+  return instant;
+}
+
+std::optional<ShipWake::Coordinates> ShipWake::Instant::coordinates(double lat, double lon) const {
+  const Data& d = *data_;
+  if (!valid_point(lat, lon) || !d.wake) return std::nullopt;
+  // The segments in the order of a lower bound of their distance, and the search stops at the
+  // first whose bound exceeds the best distance found: the exact minimum, found with one or two
+  // searches on a track of many short segments. For a point X of a segment AB of length L,
+  // |P - X| >= (|P - A| + |P - B| - L) / 2 (chords are no longer than the geodesics), and the
+  // geodesic distance is no shorter than the chord.
+  glm::dvec3 p;
+  d.earth.Forward(lat, lon, 0.0, p.x, p.y, p.z);
+  std::vector<std::pair<double, std::size_t>> order;
+  order.reserve(d.length.size());
+  for (std::size_t j = 0; j < d.length.size() && d.behind[j] < d.params.length; ++j)
+    order.emplace_back(
+        0.5 * (glm::length(p - d.ecef[j]) + glm::length(p - d.ecef[j + 1]) - d.length[j]), j);
+  std::sort(order.begin(), order.end());
   double best = std::numeric_limits<double>::infinity();
+  std::size_t best_segment = 0;
+  detail::SegmentFoot best_foot;
   Coordinates c;
-  double behind_so_far = 0.0;
-  for (std::size_t j = 0; j + 1 < poly.size() && behind_so_far < p.length; ++j) {
+  for (const auto& [bound, j] : order) {
+    if (bound > best) break;
     // A = the older point, B = the newer: the segment's azimuth is the direction of travel.
-    const PolyPoint& newer = poly[j];
-    const PolyPoint& older = poly[j + 1];
-    double len;
-    impl_->geodesic.Inverse(older.lat, older.lon, newer.lat, newer.lon, len);
-    const detail::SegmentFoot foot = detail::nearest_on_segment(
-        impl_->geodesic, older.lat, older.lon, newer.lat, newer.lon, lat, lon);
-    if (foot.distance < best) {
+    const GeoPoint& newer = d.past[j];
+    const GeoPoint& older = d.past[j + 1];
+    const detail::SegmentFoot foot = detail::nearest_on_segment(d.geodesic, older.lat, older.lon,
+                                                                newer.lat, newer.lon, lat, lon);
+    // Of two feet equally near (a turning point of the track), the newer segment's.
+    if (foot.distance < best || (foot.distance == best && j < best_segment)) {
       best = foot.distance;
-      c.behind = behind_so_far + (len - foot.along);
+      best_segment = j;
+      best_foot = foot;
+      c.behind = d.behind[j] + (foot.length - foot.along);  // exactly d.behind[j] at B
       const double side = std::sin((foot.point_azimuth - foot.azimuth) / kDegrees);
       c.lateral = side < 0.0 ? foot.distance : -foot.distance;  // left of travel = port = +
       c.heading = foot.azimuth;
     }
-    behind_so_far += len;
   }
-  if (!(best <= width) || !(c.behind > 0.0) || c.behind >= p.length ||
-      c.behind >= sailed * (1.0 - 1e-12))
+  if (!(best <= d.half_width) || !(c.behind > 0.0) || c.behind >= d.params.length ||
+      c.behind >= d.sailed * (1.0 - 1e-12))
     return std::nullopt;
+  // The gradients: n at the point is y's (the geodesic from the foot, away from the track to
+  // port), e = n turned 90 degrees clockwise. On the track the azimuth at the point is not
+  // defined; there they are the foot's.
+  glm::dvec2 n;
+  if (best < kOnTrack) {
+    const double h = c.heading / kDegrees;
+    n = glm::dvec2(-std::cos(h), std::sin(h));
+  } else {
+    const double a = best_foot.azimuth_at_point / kDegrees;
+    n = (c.lateral > 0.0 ? 1.0 : -1.0) * glm::dvec2(std::sin(a), std::cos(a));
+  }
+  c.lateral_gradient = n;
+  c.behind_gradient = best_foot.at_end ? glm::dvec2(0.0) : glm::dvec2(-n.y, n.x);
   return c;
 }
 
-std::vector<GeoPoint> ShipWake::past_track(double time) const {
-  const State st = ship_at(time);
-  if (!st.present) return {};
-  std::vector<PolyPoint> poly;
-  impl_->past(settings_, st, time, params_.length, poly);
-  std::vector<GeoPoint> out;
-  for (const PolyPoint& p : poly) out.push_back({p.lat, p.lon});
-  return out;
-}
-
-ocean::KelvinWakeSample ShipWake::sample(double lat, double lon, double time) const {
-  const std::optional<Coordinates> c = coordinates(lat, lon, time);
-  ocean::KelvinWakeParams p = params_;
-  if (!c) {
+ocean::KelvinWakeSample ShipWake::Instant::sample(const Coordinates& c) const {
+  ocean::KelvinWakeParams p = data_->params;
+  if (!data_->wake || !std::isfinite(c.heading)) {
     p.speed = 0.0;
     return ocean::kelvin_wake_at(p, 0.0, 0.0);  // two empty waves
   }
-  p.speed = ship_at(time).speed;
-  ocean::KelvinWakeSample s = ocean::kelvin_wake_at(p, c->behind, c->lateral);
+  ocean::KelvinWakeSample s = ocean::kelvin_wake_at(p, c.behind, c.lateral);
   // Ship frame (e, n) -> east-north: e = (sin h, cos h), n = e turned 90 deg counterclockwise.
-  const double h = c->heading / kDegrees;
+  const double h = c.heading / kDegrees;
   const glm::dvec2 e(std::sin(h), std::cos(h)), n(-std::cos(h), std::sin(h));
   for (ocean::WakeWave* w : {&s.transverse, &s.divergent})
     w->wave_vector = w->wave_vector.x * e + w->wave_vector.y * n;
   return s;
 }
 
-GeoBounds ShipWake::bounds(double time) const {
-  const State st = ship_at(time);
-  if (!st.present || st.speed < ocean::kMinimumWakeSpeed || settings_.amplitude == 0.0)
-    return GeoBounds{};
-  ocean::KelvinWakeParams p = params_;
-  p.speed = st.speed;
-  std::vector<PolyPoint> poly;
-  impl_->past(settings_, st, time, p.length, poly);
+ocean::KelvinWakeSample ShipWake::Instant::sample(double lat, double lon) const {
+  const std::optional<Coordinates> c = coordinates(lat, lon);
+  if (c) return sample(*c);
+  ocean::KelvinWakeParams p = data_->params;
+  p.speed = 0.0;
+  return ocean::kelvin_wake_at(p, 0.0, 0.0);  // two empty waves
+}
+
+std::vector<GeoPoint> ShipWake::Instant::past_track() const { return data_->past; }
+
+GeoBounds ShipWake::Instant::bounds() const {
+  const Data& d = *data_;
+  if (!d.wake || d.params.amplitude == 0.0) return GeoBounds{};
   double south = 90.0, north = -90.0;
   std::vector<std::pair<double, double>> arcs;
-  for (std::size_t j = 0; j + 1 < poly.size(); ++j)
-    detail::segment_extent(impl_->geodesic, poly[j + 1].lat, poly[j + 1].lon, poly[j].lat,
-                           poly[j].lon, south, north, arcs);
-  if (poly.size() == 1) arcs.emplace_back(poly[0].lon, 0.0), south = north = poly[0].lat;
+  for (std::size_t j = 0; j + 1 < d.past.size(); ++j)
+    detail::segment_extent(d.geodesic, d.past[j + 1].lat, d.past[j + 1].lon, d.past[j].lat,
+                           d.past[j].lon, south, north, arcs);
+  if (d.past.size() == 1) arcs.emplace_back(d.past[0].lon, 0.0), south = north = d.past[0].lat;
   // 1 m of margin over the half-width: the degrees-per-metre bounds are already conservative.
   return GeoBounds::from_arcs(south, north, arcs)
-      .expanded(ocean::kelvin_wake_half_width(p) + 1.0, impl_->geodesic.EquatorialRadius(),
-                impl_->geodesic.Flattening());
+      .expanded(d.half_width + 1.0, d.geodesic.EquatorialRadius(), d.geodesic.Flattening());
 }
+
+std::optional<ShipWake::Coordinates> ShipWake::coordinates(double lat, double lon,
+                                                           double time) const {
+  return at(time).coordinates(lat, lon);
+}
+
+ocean::KelvinWakeSample ShipWake::sample(double lat, double lon, double time) const {
+  return at(time).sample(lat, lon);
+}
+
+std::vector<GeoPoint> ShipWake::past_track(double time) const { return at(time).past_track(); }
+
+GeoBounds ShipWake::bounds(double time) const { return at(time).bounds(); }
 
 }  // namespace thalassa

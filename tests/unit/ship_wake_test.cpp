@@ -2,7 +2,8 @@
 // ship_wake.hpp): the track interpolated by time along geodesics, the position-heading-speed
 // form, the ship-frame coordinates of points built from known (b, y) with GeographicLib (mid
 // latitudes, across the antimeridian, near a pole), the wave vectors in east-north, the wake
-// following a turning track, and the culling bounds holding every point where the wake is
+// following a turning track, a track of many short segments searched as every segment would be,
+// the coordinates' gradients, and the culling bounds holding every point where the wake is
 // non-zero.
 
 #include <GeographicLib/Geodesic.hpp>
@@ -15,6 +16,7 @@
 
 #include <gtest/gtest.h>
 
+#include "geodesic_segment.hpp"
 #include "thalassa/planet/ship_wake.hpp"
 
 namespace thalassa {
@@ -157,6 +159,130 @@ TEST(ShipWake, WakeFollowsATurningTrack) {
   const ShipWake still(planet, slow);
   EXPECT_FALSE(still.coordinates(10.0, 20.0, 10.0).has_value());
   EXPECT_TRUE(still.bounds(10.0).empty());
+}
+
+// A track as an AIS receiver gives it: a point every 5 s (50 m at 10 m/s) round a turn of 2 km
+// radius, so that the wake's 3 km astern span 60 segments. Each point's coordinates are the
+// nearest segment's, as a search of every segment finds them (the Instant skips the segments
+// whose lower bound is beyond the best found).
+WakeSettings TurningAisTrack() {
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  WakeSettings s = Steady(0, 0, 0, 0);
+  s.name = "ais";
+  double lat = 51.0, lon = 1.5, heading = 20.0;
+  const double step = 50.0, radius = 2000.0;
+  for (int i = 0; i <= 120; ++i) {
+    s.track.push_back({lat, lon, 5.0 * i});
+    double azi;
+    g.Direct(lat, lon, heading, step, lat, lon, azi);
+    heading = azi + step / radius * 180.0 / std::numbers::pi;  // turning to starboard
+  }
+  return s;
+}
+
+TEST(ShipWake, ManySegmentTrackGivesTheNearestSegmentsCoordinates) {
+  const Planet planet;
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  const ShipWake wake(planet, TurningAisTrack());
+  const double time = 600.0;  // the last point
+  const ShipWake::Instant now = wake.at(time);
+  ASSERT_TRUE(now.ship().present);
+  const std::vector<GeoPoint> past = now.past_track();
+  ASSERT_GE(past.size(), 60u);
+  int with_wake = 0;
+  for (int i = 0; i < 72; ++i) {
+    for (int j = 0; j < 40; ++j) {
+      double lat, lon;
+      g.Direct(now.ship().lat, now.ship().lon, 5.0 * i, 3200.0 * (j + 0.5) / 40.0, lat, lon);
+      const auto c = now.coordinates(lat, lon);
+      // Every segment searched: the nearest foot, the newer segment of two equally near.
+      double best = INFINITY, behind = 0.0, lateral = 0.0, sum = 0.0;
+      for (std::size_t k = 0; k + 1 < past.size(); ++k) {
+        const detail::SegmentFoot foot = detail::nearest_on_segment(
+            g, past[k + 1].lat, past[k + 1].lon, past[k].lat, past[k].lon, lat, lon);
+        if (foot.distance < best) {
+          best = foot.distance;
+          behind = sum + (foot.length - foot.along);
+          lateral = std::sin((foot.point_azimuth - foot.azimuth) * kDeg) < 0.0 ? best : -best;
+        }
+        sum += foot.length;
+      }
+      if (!c) continue;
+      ++with_wake;
+      EXPECT_NEAR(c->behind, behind, 1e-6) << i << " " << j;
+      EXPECT_NEAR(c->lateral, lateral, 1e-9) << i << " " << j;
+      // The Instant and the ShipWake's own call agree.
+      const auto again = wake.coordinates(lat, lon, time);
+      ASSERT_TRUE(again.has_value());
+      EXPECT_EQ(again->behind, c->behind);
+      EXPECT_EQ(again->lateral, c->lateral);
+    }
+  }
+  EXPECT_GT(with_wake, 100);
+}
+
+// The coordinates' gradients against central differences of the coordinates of points 5 cm east,
+// west, north and south: straight wakes at mid-latitude, across the antimeridian and 5 km from
+// the pole, and the turning track (inside and outside the turn, where outside the foot is a
+// turning point of the track and b does not change). Points within 5 cm of where b's gradient
+// jumps are left out.
+TEST(ShipWake, CoordinateGradientsAreTheCoordinatesDifferences) {
+  const Planet planet;
+  const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
+  const double h = 0.05;  // m
+  double worst = 0.0;
+  int points = 0, fans = 0, kinks = 0;
+  for (const WakeSettings& s : {Steady(43.3, 5.3, 210.0, 8.0), Steady(-12.0, 179.99, 95.0, 12.0),
+                                Steady(89.95, 30.0, 10.0, 6.0), TurningAisTrack()}) {
+    const ShipWake wake(planet, s);
+    const double time = s.track.empty() ? 170.0 : 600.0;
+    const ShipWake::Instant now = wake.at(time);
+    for (int i = 0; i < 36; ++i) {
+      for (int j = 0; j < 12; ++j) {
+        double lat, lon;
+        g.Direct(now.ship().lat, now.ship().lon, 10.0 * i + 3.0, 2800.0 * (j + 0.5) / 12.0, lat,
+                 lon);
+        const auto c = now.coordinates(lat, lon);
+        if (!c || std::abs(c->lateral) < 1.0) continue;
+        glm::dvec2 db(0.0), dy(0.0);
+        bool all = true;
+        for (int axis = 0; axis < 2; ++axis) {
+          double lp, op, lm, om;
+          g.Direct(lat, lon, axis == 0 ? 90.0 : 0.0, h, lp, op);
+          g.Direct(lat, lon, axis == 0 ? 270.0 : 180.0, h, lm, om);
+          const auto plus = now.coordinates(lp, op), minus = now.coordinates(lm, om);
+          if (!plus || !minus) {
+            all = false;
+            break;
+          }
+          db[axis] = (plus->behind - minus->behind) / (2.0 * h);
+          dy[axis] = (plus->lateral - minus->lateral) / (2.0 * h);
+          // Within h of a kink (the edge of a turn's fan, where b's gradient jumps to 0) the
+          // one-sided differences disagree: such a point is not compared.
+          const double forward = (plus->behind - c->behind) / h;
+          const double backward = (c->behind - minus->behind) / h;
+          if (std::abs(forward - backward) > 1e-3) all = false;
+        }
+        if (!all) {
+          ++kinks;
+          continue;
+        }
+        ++points;
+        if (c->behind_gradient == glm::dvec2(0.0)) ++fans;
+        worst = std::max(
+            {worst, glm::length(db - c->behind_gradient), glm::length(dy - c->lateral_gradient)});
+        EXPECT_NEAR(glm::length(c->lateral_gradient), 1.0, 1e-12);
+        EXPECT_LT(glm::length(db - c->behind_gradient), 1e-6) << s.name << " " << i << " " << j;
+        EXPECT_LT(glm::length(dy - c->lateral_gradient), 1e-6) << s.name << " " << i << " " << j;
+      }
+    }
+  }
+  std::printf(
+      "%d points (%d in a turn's fan, %d within 5 cm of a kink or the wake's edge): worst "
+      "gradient against the differences %.3g\n",
+      points, fans, kinks, worst);
+  EXPECT_GT(points, 200);
+  EXPECT_GT(fans, 0);
 }
 
 TEST(ShipWake, BoundsHoldEveryPointWithAWake) {

@@ -60,6 +60,15 @@ class ShipWake {
     double behind = 0.0;   // b, m
     double lateral = 0.0;  // y, m, > 0 to port
     double heading = 0.0;  // degrees: direction of travel at the foot (the ship frame's e)
+    // The gradients of b and y at the point, east-north (m per m): y's is the unit direction,
+    // at the point, of the geodesic from the foot (away from the track to port, toward it to
+    // starboard), and b's is -e carried to the point, y's turned 90 degrees clockwise seen from
+    // above (Gauss's lemma: the geodesic from the foot meets the lines of constant b at a right
+    // angle). Their lengths are 1 to O(y^2 / R^2), 4e-9 at 600 m. Where the foot is a turning
+    // point of the track (the fan outside a turn) b is constant: its gradient is 0. On the track
+    // (|y| below 1 mm) they are -e and n.
+    glm::dvec2 behind_gradient{0.0};
+    glm::dvec2 lateral_gradient{0.0};
   };
   // (b, y) of the point (lat, lon: degrees) at time t, or nullopt where there is no wake (no
   // ship, a speed below ocean::kMinimumWakeSpeed, the point farther than the wake's half-width
@@ -81,6 +90,35 @@ class ShipWake {
   // Conservative bounds of where the wake can be non-zero at time t (the past track within
   // `length` astern, grown by the wake's half-width); empty when there is no wake.
   GeoBounds bounds(double time) const;
+
+  // The wake at one time: the ship and its past track found once, for many points at that time
+  // (a hull's, a solver's iterations). The functions above are each an Instant's. A value: it
+  // holds what it needs and may outlive its ShipWake.
+  class Instant {
+   public:
+    double time() const { return time_; }
+    const State& ship() const { return ship_; }
+    std::optional<Coordinates> coordinates(double lat, double lon) const;
+    ocean::KelvinWakeSample sample(double lat, double lon) const;
+    // The waves at the ship-frame coordinates c.behind and c.lateral, turned into east-north by
+    // c.heading: sample(lat, lon) for c = *coordinates(lat, lon). With b and y moved by their
+    // gradients times a small offset dp (m, east-north), the waves at the point + dp without a
+    // search of the track (what SeaState differentiates; the foot's heading is kept, which turns
+    // by about 1e-7 rad per metre along a geodesic). Empty waves where c.behind is not in
+    // (0, length) or the ship is too slow.
+    ocean::KelvinWakeSample sample(const Coordinates& c) const;
+    std::vector<GeoPoint> past_track() const;
+    GeoBounds bounds() const;
+
+   private:
+    friend class ShipWake;
+    struct Data;  // the geodesic, the past track's segments, the wake's parameters
+    explicit Instant(std::shared_ptr<const Data> data);
+    std::shared_ptr<const Data> data_;
+    double time_ = 0.0;
+    State ship_;
+  };
+  Instant at(double time) const;
 
  private:
   struct Impl;
