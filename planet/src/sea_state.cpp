@@ -137,9 +137,10 @@ struct Query {
   double time = 0.0;
   double footprint = 0.0;
   std::vector<FrameWave> waves;        // the scene's, in the point's frame
-  // The wakes with waves somewhere at `time`, where each can be non-zero, and each at the times
-  // of the rates' difference.
-  std::vector<ShipWake::Instant> wakes, wakes_later, wakes_earlier;
+  // The wakes with waves somewhere at `time`, at that time, their ShipWakes (for the rates'
+  // difference in time, once a query) and where each can be non-zero.
+  std::vector<ShipWake::Instant> wakes;
+  std::vector<const ShipWake*> ships;
   std::vector<GeoBounds> wake_bounds;
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
@@ -223,8 +224,8 @@ struct Query {
         f.d_dx += along[0];
         f.d_dy += along[1];
         if (rates) {
-          const ShipWake::Instant& later = wakes_later[i];
-          const ShipWake::Instant& earlier = wakes_earlier[i];
+          const ShipWake::Instant later = ships[i]->at(time + kWakeTimeStep);
+          const ShipWake::Instant earlier = ships[i]->at(time - kWakeTimeStep);
           f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
                      wake_displacement(earlier.sample(g.lat, g.lon))) /
                     (later.time() - earlier.time());
@@ -321,8 +322,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     GeoBounds bounds = now.bounds();
     if (bounds.empty()) continue;
     q.wakes.push_back(std::move(now));
-    q.wakes_later.push_back(wake.at(time + kWakeTimeStep));
-    q.wakes_earlier.push_back(wake.at(time - kWakeTimeStep));
+    q.ships.push_back(&wake);
     q.wake_bounds.push_back(bounds);
   }
   if (!sea.calm.empty() || !q.wakes.empty()) {

@@ -25,6 +25,9 @@ constexpr double kMaxShipSpeed = 100.0;
 // m: closer to the track than this a point's coordinate gradients are the foot's e and n (the
 // azimuth of the geodesic from the foot is not defined on the track).
 constexpr double kOnTrack = 1e-3;
+// m: how far a segment's lower bound may exceed the best distance found and the segment still be
+// searched (the bound's chords hold about 1e-9 m through ECEF).
+constexpr double kBoundMargin = 1e-6;
 
 [[noreturn]] void fail(const std::string& name, const std::string& what) {
   throw std::invalid_argument("thalassa::ShipWake" + (name.empty() ? "" : " \"" + name + "\"") +
@@ -226,7 +229,9 @@ std::optional<ShipWake::Coordinates> ShipWake::Instant::coordinates(double lat, 
   detail::SegmentFoot best_foot;
   Coordinates c;
   for (const auto& [bound, j] : order) {
-    if (bound > best) break;
+    // The margin keeps a segment whose bound only rounding (1e-9 m in ECEF) puts above the best
+    // in the search, so that of equally near feet the newer segment's wins as below.
+    if (bound > best + kBoundMargin) break;
     // A = the older point, B = the newer: the segment's azimuth is the direction of travel.
     const GeoPoint& newer = d.past[j];
     const GeoPoint& older = d.past[j + 1];

@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include "geodesic_segment.hpp"
+#include "thalassa/ocean/kelvin_wake.hpp"
 #include "thalassa/planet/ship_wake.hpp"
 
 namespace thalassa {
@@ -183,42 +184,58 @@ WakeSettings TurningAisTrack() {
 TEST(ShipWake, ManySegmentTrackGivesTheNearestSegmentsCoordinates) {
   const Planet planet;
   const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
-  const ShipWake wake(planet, TurningAisTrack());
-  const double time = 600.0;  // the last point
+  const WakeSettings settings = TurningAisTrack();
+  const ShipWake wake(planet, settings);
+  const double time = 600.0;  // exactly the last point's time
   const ShipWake::Instant now = wake.at(time);
   ASSERT_TRUE(now.ship().present);
   const std::vector<GeoPoint> past = now.past_track();
   ASSERT_GE(past.size(), 60u);
-  int with_wake = 0;
+  const double half_width = ocean::kelvin_wake_half_width(
+      {.speed = now.ship().speed, .amplitude = 0.3, .draft = 2.0, .length = 3000.0});
+  // Round the ship, the track's turning points themselves (equally near two segments) and points
+  // ahead of the ship.
+  std::vector<GeoPoint> points;
   for (int i = 0; i < 72; ++i) {
     for (int j = 0; j < 40; ++j) {
       double lat, lon;
       g.Direct(now.ship().lat, now.ship().lon, 5.0 * i, 3200.0 * (j + 0.5) / 40.0, lat, lon);
-      const auto c = now.coordinates(lat, lon);
-      // Every segment searched: the nearest foot, the newer segment of two equally near.
-      double best = INFINITY, behind = 0.0, lateral = 0.0, sum = 0.0;
-      for (std::size_t k = 0; k + 1 < past.size(); ++k) {
-        const detail::SegmentFoot foot = detail::nearest_on_segment(
-            g, past[k + 1].lat, past[k + 1].lon, past[k].lat, past[k].lon, lat, lon);
-        if (foot.distance < best) {
-          best = foot.distance;
-          behind = sum + (foot.length - foot.along);
-          lateral = std::sin((foot.point_azimuth - foot.azimuth) * kDeg) < 0.0 ? best : -best;
-        }
-        sum += foot.length;
-      }
-      if (!c) continue;
-      ++with_wake;
-      EXPECT_NEAR(c->behind, behind, 1e-6) << i << " " << j;
-      EXPECT_NEAR(c->lateral, lateral, 1e-9) << i << " " << j;
-      // The Instant and the ShipWake's own call agree.
-      const auto again = wake.coordinates(lat, lon, time);
-      ASSERT_TRUE(again.has_value());
-      EXPECT_EQ(again->behind, c->behind);
-      EXPECT_EQ(again->lateral, c->lateral);
+      points.push_back({lat, lon});
     }
   }
+  for (std::size_t k = 1; k + 1 < past.size(); ++k) points.push_back(past[k]);
+  for (double ahead : {1e-3, 10.0, 100.0}) {
+    double lat, lon;
+    g.Direct(now.ship().lat, now.ship().lon, now.ship().heading, ahead, lat, lon);
+    points.push_back({lat, lon});
+  }
+  int with_wake = 0, vertices = 0;
+  for (const GeoPoint& p : points) {
+    const auto c = now.coordinates(p.lat, p.lon);
+    // Every segment searched: the nearest foot, the newer segment's of two equally near.
+    double best = INFINITY, behind = 0.0, lateral = 0.0, heading = 0.0, sum = 0.0;
+    for (std::size_t k = 0; k + 1 < past.size(); ++k) {
+      const detail::SegmentFoot foot = detail::nearest_on_segment(
+          g, past[k + 1].lat, past[k + 1].lon, past[k].lat, past[k].lon, p.lat, p.lon);
+      if (foot.distance < best) {
+        best = foot.distance;
+        behind = sum + (foot.length - foot.along);
+        lateral = std::sin((foot.point_azimuth - foot.azimuth) * kDeg) < 0.0 ? best : -best;
+        heading = foot.azimuth;
+      }
+      sum += foot.length;
+    }
+    const bool expected = best <= half_width && behind > 0.0 && behind < 3000.0;
+    ASSERT_EQ(c.has_value(), expected) << p.lat << " " << p.lon << " b " << behind;
+    if (!c) continue;
+    ++with_wake;
+    if (best == 0.0) ++vertices;
+    EXPECT_NEAR(c->behind, behind, 1e-6) << p.lat << " " << p.lon;
+    EXPECT_NEAR(c->lateral, lateral, 1e-9) << p.lat << " " << p.lon;
+    EXPECT_NEAR(std::remainder(c->heading - heading, 360.0), 0.0, 1e-9) << p.lat << " " << p.lon;
+  }
   EXPECT_GT(with_wake, 100);
+  EXPECT_GE(vertices, 50);
 }
 
 // The coordinates' gradients against central differences of the coordinates of points 5 cm east,
@@ -231,7 +248,7 @@ TEST(ShipWake, CoordinateGradientsAreTheCoordinatesDifferences) {
   const GeographicLib::Geodesic& g = GeographicLib::Geodesic::WGS84();
   const double h = 0.05;  // m
   double worst = 0.0;
-  int points = 0, fans = 0, kinks = 0;
+  int points = 0, fans = 0, kinks = 0, on_track = 0;
   for (const WakeSettings& s : {Steady(43.3, 5.3, 210.0, 8.0), Steady(-12.0, 179.99, 95.0, 12.0),
                                 Steady(89.95, 30.0, 10.0, 6.0), TurningAisTrack()}) {
     const ShipWake wake(planet, s);
@@ -242,8 +259,15 @@ TEST(ShipWake, CoordinateGradientsAreTheCoordinatesDifferences) {
         double lat, lon;
         g.Direct(now.ship().lat, now.ship().lon, 10.0 * i + 3.0, 2800.0 * (j + 0.5) / 12.0, lat,
                  lon);
+        if (j == 0 && s.track.empty()) {
+          // On the track: the gradients are the foot's -e and n.
+          const GeographicLib::GeodesicLine back =
+              g.Line(now.ship().lat, now.ship().lon, now.ship().heading + 180.0);
+          back.Position(250.0 * (i + 1) / 3.0, lat, lon);
+        }
         const auto c = now.coordinates(lat, lon);
-        if (!c || std::abs(c->lateral) < 1.0) continue;
+        if (!c) continue;
+        if (std::abs(c->lateral) < 1e-3) ++on_track;
         glm::dvec2 db(0.0), dy(0.0);
         bool all = true;
         for (int axis = 0; axis < 2; ++axis) {
@@ -278,10 +302,11 @@ TEST(ShipWake, CoordinateGradientsAreTheCoordinatesDifferences) {
     }
   }
   std::printf(
-      "%d points (%d in a turn's fan, %d within 5 cm of a kink or the wake's edge): worst "
-      "gradient against the differences %.3g\n",
-      points, fans, kinks, worst);
+      "%d points (%d on the track, %d in a turn's fan, %d within 5 cm of a kink or the "
+      "wake's edge): worst gradient against the differences %.3g\n",
+      points, on_track, fans, kinks, worst);
   EXPECT_GT(points, 200);
+  EXPECT_GT(on_track, 50);
   EXPECT_GT(fans, 0);
 }
 

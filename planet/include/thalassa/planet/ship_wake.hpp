@@ -60,13 +60,13 @@ class ShipWake {
     double behind = 0.0;   // b, m
     double lateral = 0.0;  // y, m, > 0 to port
     double heading = 0.0;  // degrees: direction of travel at the foot (the ship frame's e)
-    // The gradients of b and y at the point, east-north (m per m): y's is the unit direction,
-    // at the point, of the geodesic from the foot (away from the track to port, toward it to
-    // starboard), and b's is -e carried to the point, y's turned 90 degrees clockwise seen from
-    // above (Gauss's lemma: the geodesic from the foot meets the lines of constant b at a right
-    // angle). Their lengths are 1 to O(y^2 / R^2), 4e-9 at 600 m. Where the foot is a turning
-    // point of the track (the fan outside a turn) b is constant: its gradient is 0. On the track
-    // (|y| below 1 mm) they are -e and n.
+    // The gradients of b and y at the point, east-north (m per m). y's is the unit direction, at
+    // the point, of the geodesic from the foot (away from the track to port, toward it to
+    // starboard): n carried to the point. b's is -e, with e (the course carried to the point) y's
+    // gradient turned 90 degrees clockwise seen from above (Gauss's lemma: the geodesic from the
+    // foot meets the lines of constant b at a right angle). Their lengths are 1 to O(y^2 / R^2),
+    // 4e-9 at 600 m. Where the foot is a turning point of the track (the fan outside a turn) b is
+    // constant: its gradient is 0. On the track (|y| below 1 mm) they are the foot's -e and n.
     glm::dvec2 behind_gradient{0.0};
     glm::dvec2 lateral_gradient{0.0};
   };
@@ -103,9 +103,12 @@ class ShipWake {
     // The waves at the ship-frame coordinates c.behind and c.lateral, turned into east-north by
     // c.heading: sample(lat, lon) for c = *coordinates(lat, lon). With b and y moved by their
     // gradients times a small offset dp (m, east-north), the waves at the point + dp without a
-    // search of the track (what SeaState differentiates; the foot's heading is kept, which turns
-    // by about 1e-7 rad per metre along a geodesic). Empty waves where c.behind is not in
-    // (0, length) or the ship is too slow.
+    // search of the track (what SeaState differentiates). The foot's heading is kept over dp: it
+    // turns by sin(heading) tan(lat) / R per metre along the course (1e-7 rad/m at mid
+    // latitudes, 2e-4 rad/m 5 km from a pole), which is the east-north frame's own turning. Only
+    // kelvin_wake_at's fades apply (ahead of the ship, past the wake's length, outside the
+    // wedge), not coordinates()' cuts at the half-width and the track's start. Empty waves where
+    // the ship is too slow.
     ocean::KelvinWakeSample sample(const Coordinates& c) const;
     std::vector<GeoPoint> past_track() const;
     GeoBounds bounds() const;
