@@ -30,6 +30,11 @@ constexpr double kNewtonTarget = 1e-12;
 // Halvings of a Newton step that does not lower the residual, before Newton stops at its best
 // iterate.
 constexpr int kMaxStepHalvings = 12;
+// Where Newton from the point stalls, the disc that holds the rest point is scanned on a grid of
+// this many nodes a side (those within the disc: 0.8 of them), and Newton goes on from the
+// kScanStarts nodes with the least |F|.
+constexpr int kScanNodes = 17;
+constexpr std::size_t kScanStarts = 4;
 // Below this |det J| the map p -> p + D_h(p) is taken as singular (a fold's edge): a fixed-point
 // step -F replaces Newton's, and height_rate is dD_z/dt. Where det J < 0 (inside a fold) the map
 // is still locally invertible, and both are Newton's and the implicit derivative's.
@@ -145,6 +150,9 @@ struct Query {
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
   double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
+  // m: a bound of |D_h| anywhere: the waves' amplitudes (s <= 1) and, for each wake, its two
+  // branches' steepness clamp kMaxTrochoidSteepness / k0 = 0.5 U^2 / g each.
+  double horizontal_bound = 0.0;
 
   // The rest point at `offset` (m, the point's east and north) on the sea at rest, geodetic.
   Geodetic rest_point(glm::dvec2 offset) const {
@@ -255,6 +263,43 @@ struct Query {
 // |p + D_h(p) - point| for the rest offset p.
 double residual(glm::dvec2 offset, const Field& f) { return glm::length(offset + glm::dvec2(f.d)); }
 
+// A Newton iterate: the rest offset (m), its field and its residual |F| (m).
+struct Iterate {
+  glm::dvec2 offset{0.0};
+  Field f;
+  double r = 0.0;
+};
+
+// Newton on F(p) = p + D_h(p) from `start`, while it gains, to kNewtonTarget: the best iterate.
+// Adds its iterations to `iterations`.
+Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
+  Iterate it{start, q.field(start, false), 0.0};
+  it.r = residual(it.offset, it.f);
+  for (int n = 0; it.r > kNewtonTarget && n < kMaxIterations; ++n) {
+    ++iterations;
+    const Field& f = it.f;
+    const glm::dmat2 jacobian(1.0 + f.d_dx.x, f.d_dx.y, f.d_dy.x, 1.0 + f.d_dy.y);
+    const glm::dvec2 residual_vector = it.offset + glm::dvec2(f.d);
+    glm::dvec2 step = std::abs(glm::determinant(jacobian)) > kSingularJacobian
+                          ? -(glm::inverse(jacobian) * residual_vector)
+                          : -residual_vector;
+    glm::dvec2 next = it.offset + step;
+    Field next_field = q.field(next, false);
+    double next_r = residual(next, next_field);
+    for (int halving = 0; halving < kMaxStepHalvings && !(next_r < it.r); ++halving) {
+      step *= 0.5;
+      next = it.offset + step;
+      next_field = q.field(next, false);
+      next_r = residual(next, next_field);
+    }
+    if (!(next_r < it.r)) break;  // no gain: the best iterate stays
+    const bool stalled = it.r <= kSeaStateTolerance && next_r > 0.5 * it.r;  // rounding's floor
+    it = Iterate{next, next_field, next_r};
+    if (stalled) break;
+  }
+  return it;
+}
+
 }  // namespace
 
 SeaState::SeaState(const Scene& scene, const std::optional<Geodetic>& wave_anchor) {
@@ -317,10 +362,13 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     q.waves.push_back({ocean::chart_direction_in_frame(nadir.wave_axes, w.direction), w.wavenumber,
                        h, phases[i], w.angular_frequency});
   }
+  for (const FrameWave& w : q.waves) q.horizontal_bound += w.amplitude;
   for (const ShipWake& wake : sea.wakes) {
     ShipWake::Instant now = wake.at(time);
     GeoBounds bounds = now.bounds();
     if (bounds.empty()) continue;
+    const double speed = now.ship().speed;
+    q.horizontal_bound += 2.0 * ocean::kMaxTrochoidSteepness * speed * speed / ocean::kGravity;
     q.wakes.push_back(std::move(now));
     q.ships.push_back(&wake);
     q.wake_bounds.push_back(bounds);
@@ -331,34 +379,36 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     q.calm_step = std::clamp(sea.min_fade / 100.0, kCalmGradientMinStep, kCalmGradientMaxStep);
   }
 
-  // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0, keeping the best iterate.
-  glm::dvec2 offset(0.0);
-  Field f = q.field(offset, false);
-  double r = residual(offset, f);
+  // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0.
   SeaPoint out;
-  while (r > kNewtonTarget && out.iterations < kMaxIterations) {
-    ++out.iterations;
-    const glm::dmat2 jacobian(1.0 + f.d_dx.x, f.d_dx.y, f.d_dy.x, 1.0 + f.d_dy.y);
-    const glm::dvec2 residual_vector = offset + glm::dvec2(f.d);
-    glm::dvec2 step = std::abs(glm::determinant(jacobian)) > kSingularJacobian
-                          ? -(glm::inverse(jacobian) * residual_vector)
-                          : -residual_vector;
-    glm::dvec2 next = offset + step;
-    Field next_field = q.field(next, false);
-    double next_r = residual(next, next_field);
-    for (int halving = 0; halving < kMaxStepHalvings && !(next_r < r); ++halving) {
-      step *= 0.5;
-      next = offset + step;
-      next_field = q.field(next, false);
-      next_r = residual(next, next_field);
+  Iterate best = newton(q, glm::dvec2(0.0), out.iterations);
+  if (!(best.r <= kSeaStateTolerance)) {
+    // Newton stalled (beside a fold, where J is near singular, or on a local minimum of |F|). A
+    // rest point exists: the map is p plus a bounded displacement, so it covers the plane. It
+    // lies within the displacement's bound of the point: scan that disc and go on from the
+    // nodes where |F| is least.
+    const double radius = q.horizontal_bound;
+    std::vector<std::pair<double, glm::dvec2>> nodes;
+    for (int i = 0; i < kScanNodes; ++i) {
+      for (int j = 0; j < kScanNodes; ++j) {
+        const glm::dvec2 p =
+            radius * (2.0 * glm::dvec2(i, j) / double(kScanNodes - 1) - glm::dvec2(1.0));
+        if (glm::length(p) > radius * (1.0 + 1e-9)) continue;
+        nodes.emplace_back(residual(p, q.field(p, false)), p);
+      }
     }
-    if (!(next_r < r)) break;  // no gain: the best iterate stays
-    const bool stalled = r <= kSeaStateTolerance && next_r > 0.5 * r;  // at the rounding's floor
-    offset = next;
-    f = next_field;
-    r = next_r;
-    if (stalled) break;
+    std::sort(nodes.begin(), nodes.end(),
+              [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (std::size_t k = 0; k < nodes.size() && k < kScanStarts; ++k) {
+      const Iterate tried = newton(q, nodes[k].second, out.iterations);
+      if (tried.r < best.r) best = tried;
+      if (best.r <= kSeaStateTolerance) break;
+    }
+    out.searched = true;
   }
+  glm::dvec2 offset = best.offset;
+  Field f = best.f;
+  const double r = best.r;
   out.converged = r <= kSeaStateTolerance;
   if (!q.wakes.empty()) f = q.field(offset);  // with the wakes' rates
 

@@ -13,10 +13,11 @@
 //
 // Trochoids move the water sideways: the particle at the surface above a point rests elsewhere.
 // SeaState::at finds that rest point by Newton's method on the horizontal map p -> p + D_h(p)
-// (to 1e-12 m where it gains, kSeaStateTolerance at least) and evaluates everything there, so the
-// height is the surface's height above the point itself (Eulerian), not the height of the particle
-// that rests below it. A single trochoid's mean height over a wavelength is then -k h^2 / 2, below
-// the sea at rest (tested).
+// (to 1e-12 m where it gains, kSeaStateTolerance at least; where it stalls beside a fold, from the
+// best nodes of a scan of the disc |p| <= max |D_h| that holds the rest point) and evaluates
+// everything there, so the height is the surface's height above the point itself (Eulerian), not
+// the height of the particle that rests below it. A single trochoid's mean height over a wavelength
+// is then -k h^2 / 2, below the sea at rest (tested).
 //
 // Frame and units: the point's east-north-up frame (x east, y north, z up along the ellipsoid's
 // normal), metres, seconds. The waves displace each rest point in its own tangent frame; the rest
@@ -69,10 +70,13 @@ struct SeaPoint {
   // reach it.
   double calm_scale = 1.0;
   int wakes = 0;
-  // Newton's iterations, and whether they met the tolerance: they may not where the surface folds
-  // over (det J <= 0 near the point), and the values are then those of the best iterate, finite.
+  // Newton's iterations, and whether they met the tolerance. Where Newton from the point stalls
+  // (beside a fold, det J near 0) the disc that holds the rest point is scanned and Newton goes
+  // on from the best nodes (`searched`; a few milliseconds). If that fails too, the values are
+  // those of the best iterate, finite.
   int iterations = 0;
   bool converged = true;
+  bool searched = false;
 };
 
 // Newton's tolerance on the horizontal map: |p + D_h(p) - point| at most this, m, for
