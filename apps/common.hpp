@@ -25,9 +25,10 @@ struct LoadedScene {
   Scene scene;
   std::string merged_json;  // the merged scene as JSON, for the outputs' metadata
 };
-// Throws SceneError (exit status 2) for a bad file, override or an undrawable scene.
+// Throws SceneError (exit status 2) for a bad file, override or, when `drawn`, an undrawable
+// scene (check_drawable: its sky.exr missing). A command that draws nothing (`sea`) passes false.
 LoadedScene load_scene(const std::string& path, const std::vector<std::string>& sets,
-                       const std::vector<std::string>& extra = {});
+                       const std::vector<std::string>& extra = {}, bool drawn = true);
 
 // Checks an output path before any work, so that a typo costs no render: the extension (none
 // checked when `extension` is empty), an existing folder, not a folder itself. Returns an error

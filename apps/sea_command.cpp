@@ -108,7 +108,7 @@ void add_sea_command(CLI::App& app, SeaArgs& args) {
 int run_sea(const SeaArgs& args) {
   LoadedScene loaded;
   try {
-    loaded = load_scene(args.scene, args.sets);
+    loaded = load_scene(args.scene, args.sets, {}, /*drawn=*/false);  // no sky is drawn
   } catch (const SceneError& error) {
     print_error(error.what());
     return kExitInvalidInput;

@@ -1390,6 +1390,11 @@ TEST_F(Cli, SeaWritesTheSurfaceAtPointsAndTimesAsCsv) {
   EXPECT_EQ(read_csv(dir_ / "calm.csv")[0].at("height_m"), "0");
   ASSERT_EQ(run("sea --at 20,-150 --footprint 100 -o long.csv").status, 0);
   EXPECT_EQ(read_csv(dir_ / "long.csv")[0].at("height_m"), "0");
+  // The sea needs no sky: a scene whose sky image is elsewhere (render refuses it) gives the
+  // same rows.
+  r = run("sea --at 20.0001,-150 --time 1.5 --set sky.exr=noon.exr -o skyless.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(read_csv(dir_ / "skyless.csv"), one);
 }
 
 // A camera under a crest (0.3 m, where the default sea stands 0.77 m high at 8 s) draws the wave
