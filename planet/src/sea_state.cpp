@@ -24,9 +24,14 @@ namespace {
 // residual falls quadratically: 3-6 iterations on the default sea, 4-5 in 95 % (docs/sea_state.md).
 constexpr int kMaxIterations = 60;
 // m: Newton goes on while it gains, down to this; kSeaStateTolerance, ten thousand times more,
-// says whether it converged. A rest point that goes through ECEF and back to latitude and
-// longitude (calm areas, wakes) holds about 1e-9 m.
+// says whether it converged.
 constexpr double kNewtonTarget = 1e-12;
+// m: the same where calm areas or wakes place their waves by the rest point's latitude and
+// longitude, whose last bits are 3e-10 to 8e-10 m. Below that their displacement stands still
+// between steps, and Newton's steps only shrink the residual by |1 - 1 / J| (0.33 per iteration
+// at the wake demo's buoy, where J's yy is 0.75): 4-5 iterations a query that moved the rest
+// point by less than its rounding.
+constexpr double kGeodeticNewtonTarget = 1e-9;
 // Halvings of a Newton step that does not lower the residual, before Newton stops at its best
 // iterate.
 constexpr int kMaxStepHalvings = 12;
@@ -150,6 +155,7 @@ struct Query {
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
   double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
+  double target = kNewtonTarget;            // m: Newton's, kGeodeticNewtonTarget with a frame
   // m: a bound of |D_h| anywhere: the waves' amplitudes (s <= 1) and, for each wake, its two
   // branches' steepness clamp kMaxTrochoidSteepness / k0 = 0.5 U^2 / g each.
   double horizontal_bound = 0.0;
@@ -270,12 +276,12 @@ struct Iterate {
   double r = 0.0;
 };
 
-// Newton on F(p) = p + D_h(p) from `start`, while it gains, to kNewtonTarget: the best iterate.
+// Newton on F(p) = p + D_h(p) from `start`, while it gains, to q.target: the best iterate.
 // Adds its iterations to `iterations`.
 Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
   Iterate it{start, q.field(start, false), 0.0};
   it.r = residual(it.offset, it.f);
-  for (int n = 0; it.r > kNewtonTarget && n < kMaxIterations; ++n) {
+  for (int n = 0; it.r > q.target && n < kMaxIterations; ++n) {
     ++iterations;
     const Field& f = it.f;
     const glm::dmat2 jacobian(1.0 + f.d_dx.x, f.d_dx.y, f.d_dy.x, 1.0 + f.d_dy.y);
@@ -377,6 +383,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     q.frame.emplace(sea.planet, lat, lon, 0.0);
     q.surface = nadir.sea_surface;
     q.calm_step = std::clamp(sea.min_fade / 100.0, kCalmGradientMinStep, kCalmGradientMaxStep);
+    q.target = kGeodeticNewtonTarget;
   }
 
   // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0.

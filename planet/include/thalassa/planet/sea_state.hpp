@@ -13,8 +13,9 @@
 //
 // Trochoids move the water sideways: the particle at the surface above a point rests elsewhere.
 // SeaState::at finds that rest point by Newton's method on the horizontal map p -> p + D_h(p)
-// (to 1e-12 m where it gains, kSeaStateTolerance at least; where it stalls beside a fold, from the
-// best nodes of a scan of the disc |p| <= max |D_h| that holds the rest point) and evaluates
+// (to 1e-12 m where it gains, 1e-9 m with calm areas or wakes, whose waves are placed by the rest
+// point's latitude and longitude; kSeaStateTolerance at least; where it stalls beside a fold, from
+// the best nodes of a scan of the disc |p| <= max |D_h| that holds the rest point) and evaluates
 // everything there, so the height is the surface's height above the point itself (Eulerian), not
 // the height of the particle that rests below it. A single trochoid's mean height over a wavelength
 // is then -k h^2 / 2, below the sea at rest (tested).
@@ -80,8 +81,8 @@ struct SeaPoint {
 };
 
 // Newton's tolerance on the horizontal map: |p + D_h(p) - point| at most this, m, for
-// SeaPoint::converged (it goes on while it gains, to 1e-12 m; through latitude and longitude a
-// rest point holds about 1e-9 m).
+// SeaPoint::converged (it goes on while it gains, to 1e-12 m; to 1e-9 m where calm areas or wakes
+// place their waves by the rest point's latitude and longitude, whose last bits are about that).
 inline constexpr double kSeaStateTolerance = 1e-8;
 
 class SeaState {
