@@ -292,10 +292,11 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
   const GeographicLib::Geodesic geodesic(planet.equatorial_radius(), planet.flattening());
 
   for (const WakeSettings& settings : scene.wakes) {
-    const ShipWake wake(planet, settings);
-    const GeoBounds bounds = wake.bounds(scene.time);
+    // The ship and its past track found once for the bounds, the ship and the track below.
+    const ShipWake::Instant wake = ShipWake(planet, settings).at(scene.time);
+    const GeoBounds bounds = wake.bounds();
     if (bounds.empty() || !bounds.intersects(footprint)) continue;
-    const ShipWake::State ship = wake.ship_at(scene.time);
+    const ShipWake::State ship = wake.ship();
     if (!ship.present || !(ship.speed >= ocean::kMinimumWakeSpeed)) continue;
     ocean::WakeInFrame placed;
     placed.name = settings.name;
@@ -304,7 +305,7 @@ ocean::LocalFeatures place_local_features(const Planet& planet, const Scene& sce
                      .draft = settings.draft,
                      .length = settings.length};
     // The past track in the frame's plane, each geodesic cut into pieces (kTrackBow).
-    const std::vector<GeoPoint> past = wake.past_track(scene.time);
+    const std::vector<GeoPoint> past = wake.past_track();
     const double radius = planet.equatorial_radius();
     placed.track.push_back(glm::dvec2(local.offset(past[0].lat, past[0].lon, 0.0)));
     for (std::size_t k = 0; k + 1 < past.size(); ++k) {
