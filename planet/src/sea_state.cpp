@@ -171,9 +171,9 @@ struct Query {
     return calm_amplitude_scale(*calm, g.lat, g.lon);
   }
 
-  // The field at the rest offset; with `rates` false the wakes' time derivative is left out
-  // (Newton needs none: it is taken once, at the rest point found).
-  Field field(glm::dvec2 offset, bool rates = true) const {
+  // The field at the rest offset, less the wakes' time derivative (Newton needs none; it is
+  // add_wake_rates', once, at the rest point found).
+  Field field(glm::dvec2 offset) const {
     Field f;
     for (const FrameWave& w : waves) {
       const double theta = w.argument - w.wavenumber * glm::dot(w.direction, offset);
@@ -237,16 +237,30 @@ struct Query {
         }
         f.d_dx += along[0];
         f.d_dy += along[1];
-        if (rates) {
-          const ShipWake::Instant later = ships[i]->at(time + kWakeTimeStep);
-          const ShipWake::Instant earlier = ships[i]->at(time - kWakeTimeStep);
-          f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
-                     wake_displacement(earlier.sample(g.lat, g.lon))) /
-                    (later.time() - earlier.time());
-        }
       }
     }
     return f;
+  }
+
+  // Adds to f, the field at the rest offset, the time derivative of each wake whose waves reach
+  // the rest point (central differences in time, the track searched at each time): the rest of
+  // the field is not evaluated again.
+  void add_wake_rates(glm::dvec2 offset, Field& f) const {
+    if (wakes.empty()) return;
+    const Geodetic g = rest_point(offset);
+    for (std::size_t i = 0; i < wakes.size(); ++i) {
+      if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
+      const std::optional<ShipWake::Coordinates> c = wakes[i].coordinates(g.lat, g.lon);
+      if (!c) continue;
+      bool reaches = false;
+      (void)wake_displacement(wakes[i].sample(*c), &reaches);
+      if (!reaches) continue;
+      const ShipWake::Instant later = ships[i]->at(time + kWakeTimeStep);
+      const ShipWake::Instant earlier = ships[i]->at(time - kWakeTimeStep);
+      f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
+                 wake_displacement(earlier.sample(g.lat, g.lon))) /
+                (later.time() - earlier.time());
+    }
   }
 
   // One wake's displacement (m, east-north-up) from its two branches at a point
@@ -279,7 +293,7 @@ struct Iterate {
 // Newton on F(p) = p + D_h(p) from `start`, while it gains, to q.target: the best iterate.
 // Adds its iterations to `iterations`.
 Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
-  Iterate it{start, q.field(start, false), 0.0};
+  Iterate it{start, q.field(start), 0.0};
   it.r = residual(it.offset, it.f);
   for (int n = 0; it.r > q.target && n < kMaxIterations; ++n) {
     ++iterations;
@@ -290,12 +304,12 @@ Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
                           ? -(glm::inverse(jacobian) * residual_vector)
                           : -residual_vector;
     glm::dvec2 next = it.offset + step;
-    Field next_field = q.field(next, false);
+    Field next_field = q.field(next);
     double next_r = residual(next, next_field);
     for (int halving = 0; halving < kMaxStepHalvings && !(next_r < it.r); ++halving) {
       step *= 0.5;
       next = it.offset + step;
-      next_field = q.field(next, false);
+      next_field = q.field(next);
       next_r = residual(next, next_field);
     }
     if (!(next_r < it.r)) break;  // no gain: the best iterate stays
@@ -401,7 +415,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
         const glm::dvec2 p =
             radius * (2.0 * glm::dvec2(i, j) / double(kScanNodes - 1) - glm::dvec2(1.0));
         if (glm::length(p) > radius * (1.0 + 1e-9)) continue;
-        nodes.emplace_back(residual(p, q.field(p, false)), p);
+        nodes.emplace_back(residual(p, q.field(p)), p);
       }
     }
     std::sort(nodes.begin(), nodes.end(),
@@ -417,7 +431,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
   Field f = best.f;
   const double r = best.r;
   out.converged = r <= kSeaStateTolerance;
-  if (!q.wakes.empty()) f = q.field(offset);  // with the wakes' rates
+  q.add_wake_rates(offset, f);
 
   out.height = f.d.z;
   const glm::dvec3 tangent_x = glm::dvec3(1.0, 0.0, 0.0) + f.d_dx;
