@@ -147,11 +147,14 @@ struct Query {
   double time = 0.0;
   double footprint = 0.0;
   std::vector<FrameWave> waves;        // the scene's, in the point's frame
-  // The wakes with waves somewhere at `time`, at that time, their ShipWakes (for the rates'
-  // difference in time, once a query) and where each can be non-zero.
-  std::vector<ShipWake::Instant> wakes;
-  std::vector<const ShipWake*> ships;
-  std::vector<GeoBounds> wake_bounds;
+  // The wakes with waves somewhere at `time`: each at that time, where it can be non-zero, and
+  // its ShipWake (for the rates' difference in time, once a query).
+  struct WakeNow {
+    ShipWake::Instant now;
+    GeoBounds bounds;
+    const ShipWake* ship = nullptr;
+  };
+  std::vector<WakeNow> wakes;
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
   ocean::SeaSurface surface;           // the sea at rest in that frame
   double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
@@ -215,12 +218,12 @@ struct Query {
       // track is searched once, at the rest point: the differences along east and north move
       // its ship-frame coordinates by their gradients (ShipWake::Coordinates), exact to
       // O(step^2 / R) against a search at each offset.
-      for (std::size_t i = 0; i < wakes.size(); ++i) {
-        if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
-        const std::optional<ShipWake::Coordinates> c = wakes[i].coordinates(g.lat, g.lon);
+      for (const WakeNow& wake : wakes) {
+        if (!wake.bounds.contains(g.lat, g.lon)) continue;
+        const std::optional<ShipWake::Coordinates> c = wake.now.coordinates(g.lat, g.lon);
         if (!c) continue;
         bool reaches = false;
-        f.d += wake_displacement(wakes[i].sample(*c), &reaches);
+        f.d += wake_displacement(wake.now.sample(*c), &reaches);
         if (!reaches) continue;
         ++f.wakes;
         const double h = kWakeStep;
@@ -231,8 +234,8 @@ struct Query {
           plus.lateral += h * c->lateral_gradient[axis];
           minus.behind -= h * c->behind_gradient[axis];
           minus.lateral -= h * c->lateral_gradient[axis];
-          along[axis] = (wake_displacement(wakes[i].sample(plus)) -
-                         wake_displacement(wakes[i].sample(minus))) /
+          along[axis] = (wake_displacement(wake.now.sample(plus)) -
+                         wake_displacement(wake.now.sample(minus))) /
                         (2.0 * h);
         }
         f.d_dx += along[0];
@@ -248,15 +251,15 @@ struct Query {
   void add_wake_rates(glm::dvec2 offset, Field& f) const {
     if (wakes.empty()) return;
     const Geodetic g = rest_point(offset);
-    for (std::size_t i = 0; i < wakes.size(); ++i) {
-      if (!wake_bounds[i].contains(g.lat, g.lon)) continue;
-      const std::optional<ShipWake::Coordinates> c = wakes[i].coordinates(g.lat, g.lon);
+    for (const WakeNow& wake : wakes) {
+      if (!wake.bounds.contains(g.lat, g.lon)) continue;
+      const std::optional<ShipWake::Coordinates> c = wake.now.coordinates(g.lat, g.lon);
       if (!c) continue;
       bool reaches = false;
-      (void)wake_displacement(wakes[i].sample(*c), &reaches);
+      (void)wake_displacement(wake.now.sample(*c), &reaches);
       if (!reaches) continue;
-      const ShipWake::Instant later = ships[i]->at(time + kWakeTimeStep);
-      const ShipWake::Instant earlier = ships[i]->at(time - kWakeTimeStep);
+      const ShipWake::Instant later = wake.ship->at(time + kWakeTimeStep);
+      const ShipWake::Instant earlier = wake.ship->at(time - kWakeTimeStep);
       f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
                  wake_displacement(earlier.sample(g.lat, g.lon))) /
                 (later.time() - earlier.time());
@@ -389,9 +392,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     if (bounds.empty()) continue;
     const double speed = now.ship().speed;
     q.horizontal_bound += 2.0 * ocean::kMaxTrochoidSteepness * speed * speed / ocean::kGravity;
-    q.wakes.push_back(std::move(now));
-    q.ships.push_back(&wake);
-    q.wake_bounds.push_back(bounds);
+    q.wakes.push_back({std::move(now), bounds, &wake});
   }
   if (!sea.calm.empty() || !q.wakes.empty()) {
     q.frame.emplace(sea.planet, lat, lon, 0.0);
