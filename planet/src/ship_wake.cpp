@@ -168,6 +168,16 @@ ShipWake::State ShipWake::ship_at(double time) const {
   return st;
 }
 
+namespace {
+
+// Two empty waves: kelvin_wake_at's for a ship too slow to make any.
+ocean::KelvinWakeSample no_waves(ocean::KelvinWakeParams params) {
+  params.speed = 0.0;
+  return ocean::kelvin_wake_at(params, 0.0, 0.0);
+}
+
+}  // namespace
+
 struct ShipWake::Instant::Data {
   GeographicLib::Geodesic geodesic;
   ocean::KelvinWakeParams params;  // speed: the ship's at the instant
@@ -268,11 +278,8 @@ std::optional<ShipWake::Coordinates> ShipWake::Instant::coordinates(double lat, 
 }
 
 ocean::KelvinWakeSample ShipWake::Instant::sample(const Coordinates& c) const {
-  ocean::KelvinWakeParams p = data_->params;
-  if (!data_->wake || !std::isfinite(c.heading)) {
-    p.speed = 0.0;
-    return ocean::kelvin_wake_at(p, 0.0, 0.0);  // two empty waves
-  }
+  if (!data_->wake || !std::isfinite(c.heading)) return no_waves(data_->params);
+  const ocean::KelvinWakeParams& p = data_->params;
   ocean::KelvinWakeSample s = ocean::kelvin_wake_at(p, c.behind, c.lateral);
   // Ship frame (e, n) -> east-north: e = (sin h, cos h), n = e turned 90 deg counterclockwise.
   const double h = c.heading / kDegrees;
@@ -284,10 +291,7 @@ ocean::KelvinWakeSample ShipWake::Instant::sample(const Coordinates& c) const {
 
 ocean::KelvinWakeSample ShipWake::Instant::sample(double lat, double lon) const {
   const std::optional<Coordinates> c = coordinates(lat, lon);
-  if (c) return sample(*c);
-  ocean::KelvinWakeParams p = data_->params;
-  p.speed = 0.0;
-  return ocean::kelvin_wake_at(p, 0.0, 0.0);  // two empty waves
+  return c ? sample(*c) : no_waves(data_->params);
 }
 
 std::vector<GeoPoint> ShipWake::Instant::past_track() const { return data_->past; }
