@@ -64,6 +64,13 @@ namespace {
 // an edge vertex on screen except within a few metres of the camera).
 constexpr int kGridMarginCells = 2;
 
+// One ring of vertices more, beyond the margin: the skirt (ocean/projected_grid.hpp), which the
+// waves leave at rest, moved out of the image by as far as the waves' displacement bound
+// (displacement_bound, the skirt's reach) moves a point there on screen.
+// The reference's ring is one more cell of margin, displaced like the rest: it draws only the
+// surface itself, and its backstop shades what no triangle covers.
+constexpr int kGridSkirtRings = 1;
+
 // The grid's margin beyond each image edge, pixels, at least: the 2 cells of kGridMarginCells
 // at the reference's default one-pixel cells, whatever its cells (OceanNodeOptions::
 // reference_grid_cell).
@@ -615,13 +622,29 @@ class OceanNode final : public gl::Node {
                                                      : options_.settings.grid_cell;
   }
 
-  // The grid's vertices (rest position and cell size, float) and indices into the buffers.
+  // A bound of how far the waves move a point, m: each wave by its amplitude (calm areas only
+  // scale them down), each wake's two branches by their steepness clamp, 0.5 U^2 / g each
+  // (ocean/kelvin_wake.hpp).
+  double displacement_bound() const {
+    double bound = 0.0;
+    for (const Wave& wave : waves_.waves) bound += wave.amplitude;
+    if (options_.features)
+      for (const WakeInFrame& wake : options_.features->wakes)
+        bound += 2.0 * kMaxTrochoidSteepness * wake.params.speed * wake.params.speed / kGravity;
+    return bound;
+  }
+
+  // The grid's vertices (rest position and cell size, float; the cell size negated on the
+  // outer ring, the skirt: kGridSkirtRings) and indices into the buffers.
   void upload_grid(const ProjectedGrid& grid) {
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 4);
-    for (std::size_t k = 0; k < grid.rest.size(); ++k)
-      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.rest[k].z, grid.cell_size[k]})
+    for (std::size_t k = 0; k < grid.rest.size(); ++k) {
+      const bool skirt = !grid.skirt.empty() && grid.skirt[k] != 0;
+      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.rest[k].z,
+                           skirt ? -grid.cell_size[k] : grid.cell_size[k]})
         vertices.push_back(static_cast<float>(value));
+    }
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
     const GLsizeiptr index_bytes =
         static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint32_t));
@@ -643,8 +666,9 @@ class OceanNode final : public gl::Node {
     glNamedBufferSubData(index_buffer_.get(), 0, index_bytes, grid.indices.data());
   }
 
-  // The grid depends on the camera alone (not on the time, the sun or a reference sample's pixel
-  // offset, which the shaders apply), so a frame that sees the sea as the last one did draws the
+  // The grid depends on the camera alone (and on the node's waves and wakes, fixed for it,
+  // through the skirt's reach; not on the time, the sun or a reference sample's pixel offset,
+  // which the shaders apply), so a frame that sees the sea as the last one did draws the
   // buffers it left: the reference's samples, repeated and timed frames. Making and uploading it
   // was the host's largest cost per frame, which every one of a reference's samples paid: for
   // its 1-pixel cells at 128x72, about 1.7 ms of the host thread's time per sample on
@@ -654,8 +678,11 @@ class OceanNode final : public gl::Node {
     if (!(grid_key_ && grid_key_->camera == camera && grid_key_->cell_px == cell)) {
       grid_key_.reset();  // until the new grid is in the buffers
       const int margin =
-          std::max(kGridMarginCells, static_cast<int>(std::ceil(kGridMarginPixels / cell)));
-      const ProjectedGrid grid = make_projected_grid(camera, cell, margin);
+          std::max(kGridMarginCells, static_cast<int>(std::ceil(kGridMarginPixels / cell))) +
+          kGridSkirtRings;
+      const double skirt_reach =
+          options_.method == OceanMethod::reference ? 0.0 : displacement_bound();
+      const ProjectedGrid grid = make_projected_grid(camera, cell, margin, skirt_reach);
       grid_index_count_ = grid.indices.size();
       if (grid.rows > 0) upload_grid(grid);
       grid_key_ = GridKey{camera, cell};

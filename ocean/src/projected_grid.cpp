@@ -128,6 +128,62 @@ glm::dvec3 surface_point(const GridCamera& camera, const glm::dvec3& ray, double
   return {xy, sea_surface_sag(camera.surface, xy)};
 }
 
+// The outer ring made a skirt (make_projected_grid): flagged, and each of its vertices on a side
+// (not a corner or a corner's neighbour) and not on the horizon moved outward in the image,
+// perpendicularly to its edge, by how far the waves can move a point there on screen: `reach`
+// over its distance along the view axis, in pixels of the focal length, at most kMaxSkirtPixels.
+// Each side's quads keep their inner edge and have their outer corners moved straight out of
+// it, so none folds; the corner cells are left as they are (a diagonal move can fold one, and a
+// hole there would have to pass the skirt at rest). The new rest positions are where the moved
+// rays meet the sea at rest. The cell sizes are already set.
+void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
+               const std::vector<char>& moved, ProjectedGrid& grid) {
+  // The most a skirt vertex moves, pixels: a camera a centimetre over the sea would otherwise
+  // move the near ring by thousands of image widths; 1024 pixels is more than any wave moves
+  // the ring inside it on screen except within centimetres of the camera.
+  constexpr double kMaxSkirtPixels = 1024.0;
+  // Halvings of the move while the moved ray misses the kept cone (the skirt on the horizon's
+  // side of a tilted image): 2^-10 of the move is below a pixel's thousandth.
+  constexpr int kMaxHalvings = 10;
+  grid.skirt.assign(grid.rest.size(), 0);
+  const double focal_px = 0.5 * camera.height_px / camera.tan_half_fov_y;
+  const glm::dvec3 eye(0.0, 0.0, camera.height);
+  const int last_column = grid.columns - 1, last_row = grid.rows - 1;
+  for (int j = 0; j <= last_row; ++j)
+    for (int i = 0; i <= last_column; ++i) {
+      const glm::dvec2 side(i == 0             ? -1.0
+                            : i == last_column ? 1.0
+                                               : 0.0,
+                            j == 0          ? -1.0
+                            : j == last_row ? 1.0
+                                            : 0.0);
+      if (side == glm::dvec2(0.0)) continue;
+      const std::size_t k = static_cast<std::size_t>(j) * grid.columns + i;
+      grid.skirt[k] = 1;
+      // On the horizon the waves displace nothing (their cells are at least the distance from
+      // the nadir, above).
+      const bool near_corner =
+          side.x != 0.0 ? j <= 1 || j >= last_row - 1 : i <= 1 || i >= last_column - 1;
+      if (moved[k] || near_corner) continue;
+      const double along = glm::dot(grid.rest[k] - eye, camera.forward);
+      const double pixels =
+          along > 0.0 ? std::min(reach * focal_px / along, kMaxSkirtPixels) : kMaxSkirtPixels;
+      // Image units per pixel: 2 / width across, 2 / height up.
+      glm::dvec2 move = pixels * side * glm::dvec2(2.0 / camera.width, 2.0 / camera.height_px);
+      for (int halvings = 0; halvings <= kMaxHalvings; ++halvings, move *= 0.5) {
+        const glm::dvec2 image = grid.image[k] + move;
+        const glm::dvec3 ray = grid_ray(camera, image);
+        if (!kept_ray(cone, ray)) continue;
+        const glm::dvec3 unit = glm::normalize(ray);
+        const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, unit);
+        if (!t) continue;
+        grid.image[k] = image;
+        grid.rest[k] = surface_point(camera, unit, *t);
+        break;
+      }
+    }
+}
+
 }  // namespace
 
 // The image region whose rays meet the sea is convex: it contains a corner of the rectangle,
@@ -184,7 +240,8 @@ bool sea_point(const GridCamera& camera, glm::dvec2 image, glm::dvec3& point) {
   return true;
 }
 
-ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells) {
+ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells,
+                                  double skirt_reach) {
   ProjectedGrid grid;
   if (!(camera.height > 0.0) || camera.width < 1 || camera.height_px < 1 || !(cell_px > 0.0))
     return grid;
@@ -291,6 +348,7 @@ ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int 
       // meaningless, NaN on some drivers.)
       if (moved[k]) grid.cell_size[k] = std::max(grid.cell_size[k], glm::length(grid.rest[k]));
     }
+  if (skirt_reach > 0.0) add_skirt(camera, cone, skirt_reach, moved, grid);
   grid.indices.reserve(static_cast<std::size_t>(cells_x) * cells_y * 6);
   // A triangle whose three vertices were all moved onto the horizon is degenerate by
   // construction on the flat sea (they lie on one line of the image); on the curved one it is a

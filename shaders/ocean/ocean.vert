@@ -15,7 +15,7 @@
 #endif
 
 // xyz: rest position on the sea at rest, m, nadir frame (common/frame.glsl); w: the grid cell's
-// size there, m.
+// size there, m, negated on the grid's outer ring (the skirt, ocean/src/ocean_node.cpp).
 layout(location = 0) in vec4 rest_and_cell;
 out vec3 rest_position;  // m, interpolated for the per-pixel normals of the fragment shader
 #ifdef METHOD_REFERENCE
@@ -37,9 +37,12 @@ const float OCEAN_NEAR_PLANE = 0.01;
 
 void main() {
   const vec3 x = rest_and_cell.xyz;
-  const float cell = max(rest_and_cell.w, 1e-6);
+  const float cell = max(abs(rest_and_cell.w), 1e-6);
   vec3 displacement = vec3(0.0);
-  for (int i = 0; i < wave_count; ++i) {
+  // The skirt stays at rest, outside the image: its triangles cover the border wherever the
+  // waves moved the ring inside it (ocean/projected_grid.hpp; the reference's grid has none).
+  const bool skirt = rest_and_cell.w < 0.0;
+  for (int i = 0; i < (skirt ? 0 : wave_count); ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
 #ifdef METHOD_REFERENCE
@@ -56,7 +59,7 @@ void main() {
   displacement *= CalmAmplitudeScale(x.xy);  // every wave's h times s (issue 9)
 #endif
 #ifdef KELVIN_WAKES
-  displacement += LocalWavesDisplacement(x.xy, cell, n_min, n_max, resolved_wave_scale);
+  if (!skirt) displacement += LocalWavesDisplacement(x.xy, cell, n_min, n_max, resolved_wave_scale);
 #endif
   const vec3 p = x + FrameSeaTangentFrame(x) * displacement;
   // Camera-relative (the camera is at height FrameCameraHeight() above the nadir).

@@ -30,7 +30,16 @@
 //   that falls inside such a sliver would fold its triangle over: it is moved onto the horizon
 //   too;
 // - the grid extends `margin_cells` beyond every image edge, so that waves displacing the edge
-//   vertices inward do not uncover the image's border.
+//   vertices inward do not uncover the image's border;
+// - optionally its outer ring is a skirt: vertices the waves leave at rest (shaders/ocean/
+//   ocean.vert), those of each side (but a corner's cells) moved straight out of the image by
+//   as far as a wave displacement of `skirt_reach` metres moves a point there on screen. The
+//   triangles between it and the displaced ring inside reach from outside the image to wherever
+//   the waves moved that ring, so the border stays covered however far a crest near the camera
+//   or a ship's wake moves it (before, those pixels were holes that the backstop shaded with the
+//   sea at rest, visibly darker beside a wake), and the rest positions they interpolate (the
+//   per-pixel normals' arguments) spread over about as much sea as they cover on screen, not
+//   one cell stretched across the hole.
 #pragma once
 
 #include <cstdint>
@@ -69,6 +78,10 @@ struct ProjectedGrid {
   std::vector<glm::dvec2> image;       // the vertex's image point (u, v) in [-1, 1] (+margin)
   std::vector<std::uint32_t> indices;  // two triangles per cell, counterclockwise in the image
   int moved_to_horizon = 0;            // vertices moved from the sky's side onto the horizon
+  // Per vertex: 1 on the outer ring of a grid made with a skirt (its vertices are drawn at rest),
+  // else 0; empty for a grid made without one. A skirt vertex keeps the cell size it had before
+  // it was moved out, and the ring inside keeps its own.
+  std::vector<std::uint8_t> skirt;
 };
 
 // The flat sea's margin: kept rays dip at least this much (their z over their component along
@@ -111,7 +124,14 @@ bool image_sees_sea(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
 bool image_sees_sky(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
 
 // cell_px: the grid cell's size in pixels (the paper's default 8); margin_cells: cells added
-// beyond each edge. Returns an empty grid (0 rows) when no part of the image sees the sea.
-ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells);
+// beyond each edge. skirt_reach (m, a bound of the waves' displacement): 0, no skirt; > 0, the
+// outer ring is a skirt (ProjectedGrid::skirt), and each of its vertices on a side, not on the
+// horizon and not a corner or a corner's neighbour, is moved perpendicularly out of its edge by
+// skirt_reach times the focal length over its distance along the view axis (pixels; at most
+// 1024), or by half that, a quarter... where that ray would not meet the sea; its rest position
+// is where the moved ray meets the sea at rest. Returns an empty grid (0 rows) when no part of
+// the image sees the sea.
+ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells,
+                                  double skirt_reach = 0.0);
 
 }  // namespace thalassa::ocean
