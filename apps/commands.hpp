@@ -113,7 +113,7 @@ struct SeaArgs {
   std::vector<std::string> at;  // "LAT,LON" each; empty: the camera's nadir
   std::optional<double> time;   // s; none: the scene's time (or --times)
   std::string times;            // "START:STOP:STEP", s; empty: one time
-  double footprint = 0.0;       // m; 0: every wave
+  std::string footprint = "0";  // metres (0: every wave), or "drawn" (drawn_footprint)
   std::string anchor;           // "LAT,LON" of the waves' chart; empty: the render's
   std::vector<std::string> sets;
   std::string output;  // empty: standard output

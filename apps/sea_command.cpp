@@ -95,7 +95,9 @@ void add_sea_command(CLI::App& app, SeaArgs& args) {
   sea->add_option("--times", args.times, "START:STOP:STEP, seconds: a time series");
   sea->add_option("--footprint", args.footprint,
                   "Metres: weigh each wave by w(N_min, N_max, wavelength / footprint) as the "
-                  "grid does, e.g. a hull's length (default 0: every wave)")
+                  "grid does, e.g. a hull's length (default 0: every wave); or `drawn`: at each "
+                  "point the grid's cell there, so that the heights are the surface `render` "
+                  "draws of the scene (refused where its grid draws no waves)")
       ->capture_default_str();
   sea->add_option("--anchor", args.anchor,
                   "LAT,LON of the waves' chart (default: the lattice point nearest the camera, "
@@ -143,8 +145,10 @@ int run_sea(const SeaArgs& args) {
   if (double(times.size()) * double(points.size()) > kMaxRows)
     return refuse("--at and --times: expected at most 1e7 rows, got " +
                   format_number(double(times.size()) * double(points.size())));
-  if (!(args.footprint >= 0.0 && std::isfinite(args.footprint)))
-    return refuse("--footprint " + format_number(args.footprint) + ": expected metres >= 0");
+  const bool drawn = args.footprint == "drawn";
+  double footprint = 0.0;
+  if (!drawn && !(parse_number(args.footprint, footprint) && footprint >= 0.0))
+    return refuse("--footprint " + args.footprint + ": expected metres >= 0 or `drawn`");
   std::optional<Geodetic> anchor;
   if (!args.anchor.empty()) {
     anchor = parse_place(args.anchor);
@@ -159,15 +163,28 @@ int run_sea(const SeaArgs& args) {
   }
 
   const SeaState sea(scene, anchor);
-  // Every point within the anchor's reach, before anything is written.
+  // Each point's footprint, and its first row: every point drawn where `drawn` is asked for and
+  // within the anchor's reach, before anything is written.
+  std::vector<double> footprints(points.size(), footprint);
+  std::vector<SeaPoint> first_rows(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
+    const std::string where =
+        args.at.empty() ? std::string("the camera's nadir") : "--at " + args.at[i];
+    if (drawn) {
+      const std::optional<double> cell = drawn_footprint(scene, points[i].first, points[i].second);
+      if (!cell)
+        return refuse("--footprint drawn: " + where +
+                      ": the scene's grid draws no waves there (behind the camera or beyond its "
+                      "horizon, or a camera under the sea or in space mode)");
+      footprints[i] = *cell;
+    }
     try {
-      sea.at(points[i].first, points[i].second, times.front(), args.footprint);
+      first_rows[i] = sea.at(points[i].first, points[i].second, times.front(), footprints[i]);
     } catch (const std::invalid_argument& error) {
       std::string why = error.what();
       why = why.substr(why.find("expected"));
-      return refuse((args.at.empty() ? std::string("the camera's nadir") : "--at " + args.at[i]) +
-                    ": " + why + (args.anchor.empty() ? "; --anchor names one near it" : ""));
+      return refuse(where + ": " + why +
+                    (args.anchor.empty() ? "; --anchor names one near it" : ""));
     }
   }
   // Row by row: a long series is not held in memory.
@@ -181,9 +198,11 @@ int run_sea(const SeaArgs& args) {
   csv << "time_s,lat_deg,lon_deg,height_m,normal_east,normal_north,normal_up,velocity_east_m_s,"
          "velocity_north_m_s,velocity_up_m_s,height_rate_m_s,rest_east_m,rest_north_m,"
          "calm_scale,wakes,converged\n";
-  for (double time : times) {
-    for (const auto& [lat, lon] : points) {
-      const SeaPoint p = sea.at(lat, lon, time, args.footprint);
+  for (std::size_t t = 0; t < times.size(); ++t) {
+    const double time = times[t];
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const auto [lat, lon] = points[i];
+      const SeaPoint p = t == 0 ? first_rows[i] : sea.at(lat, lon, time, footprints[i]);
       // The place and time to 15 digits (1e-8 m; a time of 1e9 s to 1e-5 s, and 3 x 0.3 s
       // reads 0.9), the rest to ten.
       for (double value : {time, lat, lon}) csv << csv_number(value, 15) << ',';

@@ -32,9 +32,6 @@ namespace thalassa {
 namespace {
 
 constexpr double kDegree = 3.14159265358979323846 / 180.0;
-// Lowest camera height drawn, m: 1 mm, below anything a pixel of the sea can show from there
-// (the issue 7 stress cases go down to 0.01 m).
-constexpr double kSurfaceCameraHeight = 1e-3;
 
 double median(std::vector<double> values) {
   if (values.empty()) return 0.0;
@@ -53,8 +50,7 @@ gl::FrameInputs frame_inputs(const Scene& scene, const NadirFrame& frame) {
   inputs.camera_up = basis.up;
   inputs.camera_forward = basis.forward;
   inputs.tan_half_fov_y = std::tan(0.5 * scene.camera.fov_y * kDegree);
-  // A camera exactly on the sea is above it (the scene allows height 0): it sees the sea from
-  // kSurfaceCameraHeight, since the sea's quadric meets rays from a positive height only.
+  // A camera exactly on the sea is above it (the scene allows height 0): kSurfaceCameraHeight.
   inputs.camera_height = scene.camera.height >= 0.0
                              ? std::max(scene.camera.height, kSurfaceCameraHeight)
                              : scene.camera.height;

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "thalassa/engine/image.hpp"
+#include "thalassa/planet/sea_state.hpp"
 
 namespace {
 
@@ -1395,6 +1396,25 @@ TEST_F(Cli, SeaWritesTheSurfaceAtPointsAndTimesAsCsv) {
   r = run("sea --at 20.0001,-150 --time 1.5 --set sky.exr=noon.exr -o skyless.csv");
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_EQ(read_csv(dir_ / "skyless.csv"), one);
+  // `--footprint drawn`: each point's grid cell as `render` draws the scene (drawn_footprint),
+  // here 20 m ahead of the default camera (4 m up, looking south): the same rows as that
+  // footprint given in metres, not those of every wave.
+  const double ahead = 19.99982;  // degrees: 20 m south, written exactly in the argument
+  const std::optional<double> cell = thalassa::drawn_footprint(thalassa::Scene{}, ahead, -150.0);
+  ASSERT_TRUE(cell.has_value());
+  char place[64], metres[64];
+  std::snprintf(place, sizeof place, "%.5f,-150", ahead);
+  std::snprintf(metres, sizeof metres, "%.17g", *cell);
+  r = run(std::string("sea --at ") + place + " --times 0:1:0.5 --footprint drawn -o drawn.csv");
+  ASSERT_EQ(r.status, 0) << r.err;
+  ASSERT_EQ(run(std::string("sea --at ") + place + " --times 0:1:0.5 --footprint " + metres +
+                " -o cell.csv")
+                .status,
+            0);
+  ASSERT_EQ(run(std::string("sea --at ") + place + " --times 0:1:0.5 -o every.csv").status, 0);
+  const auto drawn_rows = read_csv(dir_ / "drawn.csv");
+  EXPECT_EQ(drawn_rows, read_csv(dir_ / "cell.csv"));
+  EXPECT_NE(drawn_rows, read_csv(dir_ / "every.csv"));
 }
 
 // A camera under a crest (0.3 m, where the default sea stands 0.77 m high at 8 s) draws the wave
@@ -1434,6 +1454,10 @@ TEST_F(Cli, SeaRefusesBadPlacesTimesAndOutputs) {
   expect_invalid(run("sea --time -1 -o a.csv"), {"--time -1", "[0, 1e12]"});
   expect_invalid(run("sea --time 1 --times 0:1:1 -o a.csv"), {"--time and --times"});
   expect_invalid(run("sea --footprint -2 -o a.csv"), {"--footprint -2"});
+  expect_invalid(run("sea --footprint wide -o a.csv"), {"--footprint wide", "`drawn`"});
+  // Behind the default camera (it looks south) its grid draws nothing.
+  expect_invalid(run("sea --at 20.001,-150 --footprint drawn -o a.csv"),
+                 {"--footprint drawn: --at 20.001,-150", "draws no waves there"});
   expect_invalid(run("sea --anchor 1,2,3 -o a.csv"), {"--anchor 1,2,3"});
   expect_invalid(run("sea -o a.txt"), {"-o", ".csv"});
   expect_invalid(run("sea --set ocean.wind_speed=99 -o a.csv"), {"ocean.wind_speed"});

@@ -3,9 +3,10 @@
 // projected grid's displaced triangles the pixel sees (shaders/ocean/ocean.vert: depth = near /
 // distance along the view axis); its latitude, longitude and height above the ellipsoid come from
 // GeographicLib's conversions (Planet), and SeaState::at at that latitude and longitude, with the
-// grid cell's footprint there, must give that height. This covers what the shared shader
-// functions' own tests do not: the waves' chart and anchor, the scene's clock, the nadir frame and
-// its tangent frames, the calm areas' and wakes' geodetic placement, and the filter weights w_p.
+// grid cell there as its footprint (drawn_footprint), must give that height. This covers what
+// the shared shader functions' own tests do not: the waves' chart and anchor, the scene's clock,
+// the nadir frame and its tangent frames, the calm areas' and wakes' geodetic placement, and the
+// filter weights w_p.
 //
 // What remains between the two is the grid's: its triangles are linear between vertices a cell
 // apart, and the waves a little longer than N_max cells, kept whole, are the worst interpolated
@@ -24,6 +25,7 @@
 #include <cstdio>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "test_support.hpp"
@@ -68,9 +70,8 @@ struct Drawn {
   int holes = 0;            // of them, pixels no triangle covered (the backstop's; far depth)
 };
 
-// Renders `scene` and returns its drawn points. The footprint is the grid's cell at the pixel's
-// point of the sea at rest (flat: the views are a few tens of metres across), the larger of its
-// sides along a row and a column, as ocean::ProjectedGrid::cell_size is at its vertices.
+// Renders `scene` and returns its drawn points, each with the footprint a host would ask with
+// for the water it sees there (drawn_footprint: the grid's cell at that latitude and longitude).
 Drawn draw(const Scene& scene) {
   auto context = test::make_test_context();
   Renderer renderer(*context, scene);
@@ -89,12 +90,6 @@ Drawn draw(const Scene& scene) {
   const auto ray = [&](double u, double v) {
     return view_ray(basis, tan_half_fov_y, aspect, u, v);
   };
-  const auto rest = [&](double u, double v) {
-    const glm::dvec3 r = ray(u, v);
-    return camera + (scene.camera.height / -r.z) * r;
-  };
-  const double du = 2.0 * scene.ocean.grid_cell / width;
-  const double dv = 2.0 * scene.ocean.grid_cell / height;
 
   Drawn drawn;
   drawn.sea = renderer.sea_state();
@@ -108,11 +103,11 @@ Drawn draw(const Scene& scene) {
       }
       const double u = (i + 0.5) * 2.0 / width - 1.0, v = (j + 0.5) * 2.0 / height - 1.0;
       const glm::dvec3 point = camera + (kNearPlane / d) * ray(u, v);
-      const glm::dvec3 rest_point = rest(u, v);
-      const double footprint = std::max(glm::length(rest(u + du, v) - rest_point),
-                                        glm::length(rest(u, v + dv) - rest_point));
+      const Geodetic at = planet.geodetic(nadir.to_ecef(point));
+      const std::optional<double> footprint = drawn_footprint(scene, at.lat, at.lon);
+      if (!footprint) throw std::runtime_error("no drawn footprint at a drawn point");
       const int border = std::min({i, j, width - 1 - i, height - 1 - j});
-      drawn.points.push_back({planet.geodetic(nadir.to_ecef(point)), footprint, border});
+      drawn.points.push_back({at, *footprint, border});
     }
   return drawn;
 }
@@ -178,8 +173,8 @@ TEST(SeaStateDrawn, QueriesMatchTheDrawnOpenSea) {
   print("2-pixel cells", drawn, exact);
   print("  50 ms later", drawn, late);
   print("  the border", drawn, border);
-  // Measured: rms 4.0 mm, worst 25 mm of heights whose rms is 0.18 m; 50 ms later, 18 mm. The
-  // border: rms 6.3 mm, worst 28 mm (no skirt shows here).
+  // Measured: rms 4.0 mm, worst 23 mm of heights whose rms is 0.18 m; 50 ms later, 18 mm. The
+  // border: rms 6.3 mm, worst 30 mm (no skirt shows here).
   EXPECT_EQ(drawn.holes, 0);
   EXPECT_GT(exact.height_rms, 0.1);
   EXPECT_LT(border.worst, 0.06);
@@ -197,7 +192,7 @@ TEST(SeaStateDrawn, FootprintIsTheGridsFilter) {
   const Difference whole = compare(drawn, scene.time, false);
   print("8-pixel cells, footprint", drawn, filtered);
   print("8-pixel cells, every wave", drawn, whole);
-  // Measured: rms 17 mm, worst 117 mm with the footprint; 31 mm and 208 mm without.
+  // Measured: rms 17 mm, worst 114 mm with the footprint; 31 mm and 208 mm without.
   EXPECT_LT(filtered.rms, 0.03);
   EXPECT_LT(filtered.rms, 0.7 * whole.rms);
 }
@@ -231,9 +226,9 @@ TEST(SeaStateDrawn, QueriesMatchTheDrawnWakeAndCalmArea) {
   print("wake and calm area", drawn, exact);
   print("      50 ms later", drawn, late);
   print("        the border", drawn, border);
-  // Measured: rms 5.2 mm, worst 39 mm of heights whose rms is 1.1 m; 50 ms later, 84 mm. The
+  // Measured: rms 4.9 mm, worst 36 mm of heights whose rms is 1.1 m; 50 ms later, 84 mm. The
   // wake's waves pull the grid's right edge into the image: the border's points there see the
-  // skirt, within 72 mm (rms 6.2 mm over the border; 515 mm with the skirt left unmoved one cell
+  // skirt, within 70 mm (rms 6.1 mm over the border; 515 mm with the skirt left unmoved one cell
   // out, and 23 holes with no skirt and a margin of 2 cells).
   const int points = exact.points;
   EXPECT_EQ(drawn.holes, 0);

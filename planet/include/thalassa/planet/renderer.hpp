@@ -26,6 +26,10 @@ namespace thalassa {
 
 // Camera heights at and above this are rendered in `space` mode (DESIGN section 1), in metres.
 constexpr double kSpaceModeHeight = 20000.0;
+// Lowest camera height drawn, m: 1 mm, below anything a pixel of the sea can show from there
+// (the issue 7 stress cases go down to 0.01 m). A camera exactly on the sea (height 0) sees it
+// from here, since the sea's quadric meets rays from a positive height only.
+constexpr double kSurfaceCameraHeight = 1e-3;
 
 struct RenderStats {
   std::string backend;   // "egl", "osmesa", "glfw", "host"
