@@ -64,12 +64,15 @@ namespace {
 // an edge vertex on screen except within a few metres of the camera).
 constexpr int kGridMarginCells = 2;
 
-// One ring of vertices more, beyond the margin: the skirt (ocean/projected_grid.hpp), which the
-// waves leave at rest, moved out of the image by as far as the waves' displacement bound
-// (displacement_bound, the skirt's reach) moves a point there on screen.
-// The reference's ring is one more cell of margin, displaced like the rest: it draws only the
-// surface itself, and its backstop shades what no triangle covers.
-constexpr int kGridSkirtRings = 1;
+// The one ring of vertices beyond the margin that make_projected_grid makes the skirt
+// (ocean/projected_grid.hpp): left at rest by the waves, moved out of the image by about as far
+// as the waves' displacement bound (displacement_bound, the skirt's reach) moves a point there on
+// screen. The reference's ring is one more cell of margin, displaced like the rest: it draws
+// only the surface itself, and its backstop shades what no triangle covers.
+constexpr int kGridSkirtRing = 1;
+// m: a skirt vertex's cell size is sent negated, and at least this (ocean.vert's own floor of
+// the cell), so that a cell rounding to 0 in float cannot hide the flag as -0.
+constexpr double kSkirtFlagCell = 1e-6;
 
 // The grid's margin beyond each image edge, pixels, at least: the 2 cells of kGridMarginCells
 // at the reference's default one-pixel cells, whatever its cells (OceanNodeOptions::
@@ -635,14 +638,16 @@ class OceanNode final : public gl::Node {
   }
 
   // The grid's vertices (rest position and cell size, float; the cell size negated on the
-  // outer ring, the skirt: kGridSkirtRings) and indices into the buffers.
+  // outer ring, the skirt: kGridSkirtRing, at least kSkirtFlagCell so that no skirt vertex has
+  // -0) and indices into the buffers.
   void upload_grid(const ProjectedGrid& grid) {
     std::vector<float> vertices;
     vertices.reserve(grid.rest.size() * 4);
     for (std::size_t k = 0; k < grid.rest.size(); ++k) {
       const bool skirt = !grid.skirt.empty() && grid.skirt[k] != 0;
-      for (double value : {grid.rest[k].x, grid.rest[k].y, grid.rest[k].z,
-                           skirt ? -grid.cell_size[k] : grid.cell_size[k]})
+      for (double value :
+           {grid.rest[k].x, grid.rest[k].y, grid.rest[k].z,
+            skirt ? -std::max(grid.cell_size[k], kSkirtFlagCell) : grid.cell_size[k]})
         vertices.push_back(static_cast<float>(value));
     }
     const GLsizeiptr vertex_bytes = static_cast<GLsizeiptr>(vertices.size() * sizeof(float));
@@ -679,7 +684,7 @@ class OceanNode final : public gl::Node {
       grid_key_.reset();  // until the new grid is in the buffers
       const int margin =
           std::max(kGridMarginCells, static_cast<int>(std::ceil(kGridMarginPixels / cell))) +
-          kGridSkirtRings;
+          kGridSkirtRing;
       const double skirt_reach =
           options_.method == OceanMethod::reference ? 0.0 : displacement_bound();
       const ProjectedGrid grid = make_projected_grid(camera, cell, margin, skirt_reach);

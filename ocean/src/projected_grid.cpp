@@ -130,20 +130,26 @@ glm::dvec3 surface_point(const GridCamera& camera, const glm::dvec3& ray, double
 
 // The outer ring made a skirt (make_projected_grid): flagged, and each of its vertices on a side
 // (not a corner or a corner's neighbour) and not on the horizon moved outward in the image,
-// perpendicularly to its edge, by how far the waves can move a point there on screen: `reach`
-// over its distance along the view axis, in pixels of the focal length, at most kMaxSkirtPixels.
-// Each side's quads keep their inner edge and have their outer corners moved straight out of
-// it, so none folds; the corner cells are left as they are (a diagonal move can fold one, and a
-// hole there would have to pass the skirt at rest). The new rest positions are where the moved
-// rays meet the sea at rest. The cell sizes are already set.
+// perpendicularly to its edge, by reach times the focal length (pixels) over its distance along
+// the view axis: about how far a displacement of `reach` moves a point there on screen (more off
+// the axis, by up to 1 / cos of the angle, and near the camera). The coverage does not depend on
+// that distance: the ring at rest encloses the image wherever it lies, so the displaced mesh
+// inside it covers the image. The move spreads the rest positions the triangles between the two
+// rings interpolate over about the sea they cover, instead of one cell stretched across a gap.
+// At rest each side's quads keep their inner edge and have their outer corners moved straight
+// out of it, so none folds; the corner cells keep their skirt one cell out (a diagonal move can
+// fold one). The cell sizes are already set.
 void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
                const std::vector<char>& moved, ProjectedGrid& grid) {
   // The most a skirt vertex moves, pixels: a camera a centimetre over the sea would otherwise
-  // move the near ring by thousands of image widths; 1024 pixels is more than any wave moves
-  // the ring inside it on screen except within centimetres of the camera.
+  // move its near ring by thousands of image widths. The cap binds where the ring is nearer than
+  // reach times the focal length over it (1.6 m over the 10 m/s sea at 1080 lines and 45
+  // degrees; 14 m with a 10 m/s ship's wake in view, whose bound is U^2 / g).
   constexpr double kMaxSkirtPixels = 1024.0;
   // Halvings of the move while the moved ray misses the kept cone (the skirt on the horizon's
-  // side of a tilted image): 2^-10 of the move is below a pixel's thousandth.
+  // side of a tilted image) or would come nearer the camera than half the vertex's distance along
+  // the view axis (the near plane, 1 cm, must not clip the skirt of a camera a few cm up): 2^-10
+  // of the move is below a pixel's thousandth.
   constexpr int kMaxHalvings = 10;
   grid.skirt.assign(grid.rest.size(), 0);
   const double focal_px = 0.5 * camera.height_px / camera.tan_half_fov_y;
@@ -160,10 +166,10 @@ void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
       if (side == glm::dvec2(0.0)) continue;
       const std::size_t k = static_cast<std::size_t>(j) * grid.columns + i;
       grid.skirt[k] = 1;
-      // On the horizon the waves displace nothing (their cells are at least the distance from
-      // the nadir, above).
       const bool near_corner =
           side.x != 0.0 ? j <= 1 || j >= last_row - 1 : i <= 1 || i >= last_column - 1;
+      // On the horizon the waves displace nothing (their cells are at least the distance from
+      // the nadir, above).
       if (moved[k] || near_corner) continue;
       const double along = glm::dot(grid.rest[k] - eye, camera.forward);
       const double pixels =
@@ -177,8 +183,10 @@ void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
         const glm::dvec3 unit = glm::normalize(ray);
         const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, unit);
         if (!t) continue;
+        const glm::dvec3 rest = surface_point(camera, unit, *t);
+        if (!(glm::dot(rest - eye, camera.forward) >= 0.5 * along)) continue;
         grid.image[k] = image;
-        grid.rest[k] = surface_point(camera, unit, *t);
+        grid.rest[k] = rest;
         break;
       }
     }

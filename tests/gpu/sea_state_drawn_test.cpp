@@ -18,8 +18,6 @@
 //   THALASSA_TEST_BACKEND=egl build/tests/gpu_tests --gtest_filter='SeaStateDrawn*'
 #include <gtest/gtest.h>
 
-#include <glad/gl.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -44,18 +42,6 @@ constexpr int kStride = 2;
 // skirt's pixels measured here are within 1 pixel of the edge).
 constexpr int kBorderBand = 8;
 
-// The HDR target's depth after render(), rows bottom first (as gl_FragCoord counts them).
-std::vector<float> drawn_depth(const Renderer& renderer, int width, int height) {
-  std::vector<float> depth(static_cast<std::size_t>(width) * height);
-  GLint previous = 0;
-  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer.hdr_framebuffer());
-  glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
-  return depth;
-}
-
 // A drawn pixel: where the grid's surface is there, and the cell's size (eq. 2's L) there.
 struct DrawnPoint {
   Geodetic point;        // degrees, degrees, m above the ellipsoid
@@ -77,7 +63,7 @@ Drawn draw(const Scene& scene) {
   Renderer renderer(*context, scene);
   renderer.render();
   const int width = scene.image.width, height = scene.image.height;
-  const std::vector<float> depth = drawn_depth(renderer, width, height);
+  const std::vector<float> depth = test::read_depth(renderer, width, height);
 
   const Planet planet(scene.planet);
   const LocalFrame nadir = planet.local_frame(scene.camera.lat, scene.camera.lon, 0.0);
@@ -261,7 +247,8 @@ TEST(SeaStateDrawn, SkirtCoversTheImagesBorder) {
     auto context = test::make_test_context();
     Renderer renderer(*context, scene);
     renderer.render();
-    const std::vector<float> depth = drawn_depth(renderer, scene.image.width, scene.image.height);
+    const std::vector<float> depth =
+        test::read_depth(renderer, scene.image.width, scene.image.height);
     EXPECT_EQ(std::count(depth.begin(), depth.end(), 0.0f), 0)
         << scene.camera.height << " m up, " << scene.ocean.grid_cell << "-pixel cells";
   }

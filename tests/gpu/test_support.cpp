@@ -65,4 +65,15 @@ std::vector<glm::vec4> evaluate_fragment(unsigned program, const std::vector<glm
   return out;
 }
 
+std::vector<float> read_depth(const Renderer& renderer, int width, int height) {
+  std::vector<float> depth(static_cast<std::size_t>(width) * height);
+  GLint previous = 0;
+  glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, renderer.hdr_framebuffer());
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, width, height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previous));
+  return depth;
+}
+
 }  // namespace thalassa::test

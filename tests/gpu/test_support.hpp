@@ -28,4 +28,9 @@ Scene scene_from(const std::string& json);
 std::vector<glm::vec4> evaluate_fragment(unsigned program, const std::vector<glm::vec4>& texels,
                                          int width, int height);
 
+// The HDR target's depth after `renderer`'s render() (reversed-Z: 0 where no triangle was drawn,
+// the sky's and the holes the backstop shades), width x height, rows bottom first (as
+// gl_FragCoord counts them). Restores the read framebuffer binding.
+std::vector<float> read_depth(const Renderer& renderer, int width, int height);
+
 }  // namespace thalassa::test

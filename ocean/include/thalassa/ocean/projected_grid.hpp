@@ -33,13 +33,13 @@
 //   vertices inward do not uncover the image's border;
 // - optionally its outer ring is a skirt: vertices the waves leave at rest (shaders/ocean/
 //   ocean.vert), those of each side (but a corner's cells) moved straight out of the image by
-//   as far as a wave displacement of `skirt_reach` metres moves a point there on screen. The
-//   triangles between it and the displaced ring inside reach from outside the image to wherever
-//   the waves moved that ring, so the border stays covered however far a crest near the camera
-//   or a ship's wake moves it (before, those pixels were holes that the backstop shaded with the
-//   sea at rest, visibly darker beside a wake), and the rest positions they interpolate (the
-//   per-pixel normals' arguments) spread over about as much sea as they cover on screen, not
-//   one cell stretched across the hole.
+//   about as far as a displacement of `skirt_reach` metres moves a point there on screen. The
+//   ring at rest encloses the image, so the triangles between it and the displaced ring inside
+//   reach from outside the image to wherever the waves moved that ring: the border stays covered
+//   however far a crest near the camera or a ship's wake moves it (before, those pixels were
+//   holes that the backstop shaded with the sea at rest, visibly darker beside a wake). The move
+//   spreads the rest positions those triangles interpolate (the per-pixel normals' arguments)
+//   over about as much sea as they cover on screen, instead of one cell stretched across the gap.
 #pragma once
 
 #include <cstdint>
@@ -128,9 +128,10 @@ bool image_sees_sky(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
 // outer ring is a skirt (ProjectedGrid::skirt), and each of its vertices on a side, not on the
 // horizon and not a corner or a corner's neighbour, is moved perpendicularly out of its edge by
 // skirt_reach times the focal length over its distance along the view axis (pixels; at most
-// 1024), or by half that, a quarter... where that ray would not meet the sea; its rest position
-// is where the moved ray meets the sea at rest. Returns an empty grid (0 rows) when no part of
-// the image sees the sea.
+// 1024), or by half that, a quarter... where that ray would not meet the sea or would meet it
+// nearer the camera than half the vertex's distance along the view axis; its rest position is
+// where the moved ray meets the sea at rest. Returns an empty grid (0 rows) when no part of the
+// image sees the sea.
 ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells,
                                   double skirt_reach = 0.0);
 
