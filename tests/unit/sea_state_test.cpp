@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <numbers>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "thalassa/engine/scene.hpp"
@@ -375,6 +376,48 @@ TEST(SeaState, NewtonInAWakeStopsAtTheRestPointsRounding) {
   const double mean = double(iterations) / queries;
   std::printf("%d queries in a wake: %.2f iterations on average\n", queries, mean);
   EXPECT_LT(mean, 5.5);
+}
+
+// A host samples a hull from several threads: at() keeps no state, so one SeaState answers
+// queries from 4 threads at once exactly as it answers them one after another (the wake demo's
+// wake and calm area, 400 points and times each).
+TEST(SeaState, ConcurrentQueriesAreTheSerialOnes) {
+  SceneBuilder builder;
+  builder.load_file(std::string(THALASSA_SOURCE_DIR) + "/data/scenes/wake_demo/wake_50m.json");
+  const SeaState sea(builder.build());
+  struct Query {
+    double lat, lon, time;
+  };
+  std::vector<Query> queries;
+  for (int i = 0; i < 400; ++i)
+    queries.push_back({36.0035611 + 1e-5 * (i % 20) - 1e-4, -19.9965414 + 1e-5 * (i / 20) - 1e-4,
+                       60.0 + 0.05 * i});
+  const auto answer = [&](const Query& q) { return sea.at(q.lat, q.lon, q.time); };
+  std::vector<SeaPoint> serial;
+  for (const Query& q : queries) serial.push_back(answer(q));
+  constexpr int kThreads = 4;
+  std::vector<std::vector<SeaPoint>> concurrent(kThreads);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([&, t] {
+      // Each thread in its own order, so that they query different points at the same moment.
+      for (std::size_t i = 0; i < queries.size(); ++i)
+        concurrent[t].push_back(answer(queries[(i * (2 * t + 1)) % queries.size()]));
+    });
+  for (std::thread& thread : threads) thread.join();
+  int in_wake = 0;
+  for (const SeaPoint& p : serial) in_wake += p.wakes > 0 ? 1 : 0;
+  EXPECT_GT(in_wake, 100);
+  for (int t = 0; t < kThreads; ++t)
+    for (std::size_t i = 0; i < queries.size(); ++i) {
+      const SeaPoint& a = serial[(i * (2 * t + 1)) % queries.size()];
+      const SeaPoint& b = concurrent[t][i];
+      ASSERT_EQ(a.height, b.height) << "thread " << t << " query " << i;
+      ASSERT_EQ(a.normal, b.normal) << "thread " << t << " query " << i;
+      ASSERT_EQ(a.velocity, b.velocity) << "thread " << t << " query " << i;
+      ASSERT_EQ(a.height_rate, b.height_rate) << "thread " << t << " query " << i;
+      ASSERT_EQ(a.iterations, b.iterations) << "thread " << t << " query " << i;
+    }
 }
 
 // The steepest wake the scene allows (amplitude 10 m) on a 20 m/s sea: every answer finite and

@@ -121,7 +121,8 @@ class SeaState {
   // `time` (s, the scene's clock, [0, kSceneMaxTime]), with every wave, or weighted for a
   // footprint of `footprint` m (>= 0; 0: every wave). Throws std::invalid_argument naming the
   // argument for anything else, and std::runtime_error rather than return a value that is not
-  // finite (none is known). (A moved-from SeaState may only be assigned or destroyed.)
+  // finite (none is known). (A moved-from SeaState may only be assigned or destroyed.) It keeps
+  // no state between queries: one SeaState may answer from many threads at once.
   SeaPoint at(double lat, double lon, double time, double footprint = 0.0) const;
   // At the scene's time, every wave.
   SeaPoint at(double lat, double lon) const;
