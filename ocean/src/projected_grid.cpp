@@ -128,6 +128,11 @@ glm::dvec3 surface_point(const GridCamera& camera, const glm::dvec3& ray, double
   return {xy, sea_surface_sag(camera.surface, xy)};
 }
 
+// m along the view axis: twice the ocean's near plane (shaders/ocean/ocean.vert,
+// OCEAN_NEAR_PLANE, 1 cm), which must not clip the skirt. A skirt vertex comes no nearer than half
+// its distance, nor than this unless it was already nearer (then not at all).
+constexpr double kSkirtNearest = 0.02;
+
 // The outer ring made a skirt (make_projected_grid): flagged, and each of its vertices on a side
 // (not a corner or a corner's neighbour) and not on the horizon moved outward in the image,
 // perpendicularly to its edge, by reach times the focal length (pixels) over its distance along
@@ -147,10 +152,12 @@ void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
   // degrees; 14 m with a 10 m/s ship's wake in view, whose bound is U^2 / g).
   constexpr double kMaxSkirtPixels = 1024.0;
   // Halvings of the move while the moved ray misses the kept cone (the skirt on the horizon's
-  // side of a tilted image) or would come nearer the camera than half the vertex's distance along
-  // the view axis (the near plane, 1 cm, must not clip the skirt of a camera a few cm up): 2^-10
-  // of the move is below a pixel's thousandth.
+  // side of a tilted image) or would come nearer the camera than the vertex's nearest
+  // (nearest_along): 2^-10 of the move is below a pixel's thousandth.
   constexpr int kMaxHalvings = 10;
+  const auto nearest_along = [](double along) {
+    return std::min(along, std::max(0.5 * along, kSkirtNearest));
+  };
   grid.skirt.assign(grid.rest.size(), 0);
   const double focal_px = 0.5 * camera.height_px / camera.tan_half_fov_y;
   const glm::dvec3 eye(0.0, 0.0, camera.height);
@@ -184,7 +191,10 @@ void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
         const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, unit);
         if (!t) continue;
         const glm::dvec3 rest = surface_point(camera, unit, *t);
-        if (!(glm::dot(rest - eye, camera.forward) >= 0.5 * along)) continue;
+        // (A vertex on a flat sea under a camera looking straight down keeps its distance: the
+        // rounding of its moved point's must not refuse it.)
+        if (!(glm::dot(rest - eye, camera.forward) >= nearest_along(along) * (1.0 - 1e-9)))
+          continue;
         grid.image[k] = image;
         grid.rest[k] = rest;
         break;

@@ -242,7 +242,8 @@ TEST(ProjectedGrid, WideFieldsOfViewLookingUp) {
 // rest of the grid, its triangles and every cell size are the grid's without it. Each side
 // vertex off the horizon and away from the corners goes straight out of its edge by
 // reach x focal / its distance along the view axis (pixels, at most 1024), or by the first of its
-// halvings whose ray meets the sea no nearer than half that distance, and stays where none does;
+// halvings whose ray meets the sea no nearer than half that distance or 2 cm (twice the near
+// plane; a vertex already nearer, no nearer than it was), and stays where none does;
 // and the grid keeps every invariant of check_grid (in front of the camera, on the sea at rest,
 // on its image point's ray, no fold, the image covered), at fields of view of 45 and 120 degrees.
 TEST(ProjectedGrid, SkirtMovesOnlyTheOuterRingOut) {
@@ -299,7 +300,8 @@ TEST(ProjectedGrid, SkirtMovesOnlyTheOuterRingOut) {
                     }
                     // The rule's candidates, in order: it took the first that holds (up to
                     // the rounding of the tests at the horizon's and the near limit's edge:
-                    // `holds` strictly inside them, `may_hold` within 1e-12 of them).
+                    // `holds` strictly inside them, `may_hold` within 1e-12 of the horizon's and
+                    // 1e-6 of the near limit, relative).
                     const double along = glm::dot(plain.rest[k] - camera, c.forward);
                     const double full = std::min(reach * focal_px / along, 1024.0);
                     const auto candidate = [&](int n, double slack) {
@@ -307,9 +309,10 @@ TEST(ProjectedGrid, SkirtMovesOnlyTheOuterRingOut) {
                           plain.image[k] +
                           std::ldexp(full, -n) * out * glm::dvec2(2.0 / c.width, 2.0 / c.height_px);
                       glm::dvec3 point;
+                      const double nearest = std::min(along, std::max(0.5 * along, 0.02));
                       return grid_horizon_clearance(c, grid_ray(c, image)) > slack &&
                              sea_point(c, image, point) &&
-                             glm::dot(point - camera, c.forward) >= 0.5 * along * (1.0 + slack);
+                             glm::dot(point - camera, c.forward) >= nearest * (1.0 + 1e6 * slack);
                     };
                     const auto holds = [&](int n) { return candidate(n, 1e-12); };
                     const auto may_hold = [&](int n) { return candidate(n, -1e-12); };

@@ -129,8 +129,9 @@ bool image_sees_sky(const GridCamera& camera, glm::dvec2 lo, glm::dvec2 hi);
 // horizon and not a corner or a corner's neighbour, is moved perpendicularly out of its edge by
 // skirt_reach times the focal length over its distance along the view axis (pixels; at most
 // 1024), or by half that, a quarter... where that ray would not meet the sea or would meet it
-// nearer the camera than half the vertex's distance along the view axis; its rest position is
-// where the moved ray meets the sea at rest. Returns an empty grid (0 rows) when no part of the
+// nearer the camera along the view axis than half the vertex's distance or 2 cm (twice the
+// ocean's near plane; a vertex already nearer stays); its rest position is where the moved ray
+// meets the sea at rest. Returns an empty grid (0 rows) when no part of the
 // image sees the sea.
 ProjectedGrid make_projected_grid(const GridCamera& camera, double cell_px, int margin_cells,
                                   double skirt_reach = 0.0);

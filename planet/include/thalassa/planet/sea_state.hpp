@@ -89,15 +89,18 @@ inline constexpr double kSeaStateTolerance = 1e-8;
 // (lat, lon) (degrees) with the `full`, `basic` and `normals` methods: the projected grid's cell
 // there (eq. 2's L, the larger of the distances on the sea at rest to the next vertex along a row
 // and along a column, ocean/projected_grid.hpp; the one the point's image point would have if it
-// lies outside the image), over the waves' hand-over to the view from space
+// lies outside the image; beside the horizon, to the horizon's point where the grid moved its
+// next vertex), over the waves' hand-over to the view from space
 // (ocean::resolved_wave_scale, 1 below 10 km). A query with it leaves out the waves the grid
 // leaves out (w_p); what remains is the grid's linear interpolation between vertices a cell apart
 // (docs/sea_state.md, "Against the drawn surface": 4 mm rms at 2-pixel cells 12 m over a 10 m/s
 // sea, 17 mm at 8). A host floating a buoy on the water it sees asks with this; one moving a hull
 // with the sea, with the hull's length (or 0: every wave). std::nullopt where the grid draws no
-// waves at the point: behind the camera or hidden beyond the horizon, a camera under the sea or
-// in space mode (kSpaceModeHeight, planet/renderer.hpp). The reference method draws every wave
-// (footprint 0). Throws std::invalid_argument for lat outside [-90, 90] or a lon not finite.
+// waves at the point: behind the camera, beyond the horizon (or the grid's last row, a relative
+// 4.5e-5 of the distance short of it), a camera under the sea or in space mode
+// (kSpaceModeHeight, planet/renderer.hpp). About a microsecond a call. The reference method draws
+// every wave (footprint 0). Throws std::invalid_argument for lat outside [-90, 90] or a lon not
+// finite.
 std::optional<double> drawn_footprint(const Scene& scene, double lat, double lon);
 
 class SeaState {
