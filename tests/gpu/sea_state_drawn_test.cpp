@@ -109,7 +109,8 @@ struct Difference {
 
 enum class Pixels { inside, border };
 
-// The drawn points inside kBorderBand of the edges, or those within it.
+// The drawn points at least kBorderBand pixels from every edge of the image (Pixels::inside), or
+// those nearer one (Pixels::border).
 Difference compare(const Drawn& drawn, double time, bool with_footprint,
                    Pixels pixels = Pixels::inside) {
   const SeaState& sea = *drawn.sea;
