@@ -185,12 +185,8 @@ void add_skirt(const GridCamera& camera, const KeptCone& cone, double reach,
       glm::dvec2 move = pixels * side * glm::dvec2(2.0 / camera.width, 2.0 / camera.height_px);
       for (int halvings = 0; halvings <= kMaxHalvings; ++halvings, move *= 0.5) {
         const glm::dvec2 image = grid.image[k] + move;
-        const glm::dvec3 ray = grid_ray(camera, image);
-        if (!kept_ray(cone, ray)) continue;
-        const glm::dvec3 unit = glm::normalize(ray);
-        const std::optional<double> t = sea_surface_distance(camera.surface, camera.height, unit);
-        if (!t) continue;
-        const glm::dvec3 rest = surface_point(camera, unit, *t);
+        glm::dvec3 rest;
+        if (!kept_ray(cone, grid_ray(camera, image)) || !sea_point(camera, image, rest)) continue;
         // (A vertex on a flat sea under a camera looking straight down keeps its distance: the
         // rounding of its moved point's must not refuse it.)
         if (!(glm::dot(rest - eye, camera.forward) >= nearest_along(along) * (1.0 - 1e-9)))
