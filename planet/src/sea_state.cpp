@@ -50,13 +50,17 @@ constexpr double kSingularJacobian = 1e-9;
 // the second derivative jumps (against a gradient of 1.5 |1 - scale| / F mid-fade: 2 %).
 constexpr double kCalmGradientMinStep = 1e-3;
 constexpr double kCalmGradientMaxStep = 0.25;
-// The wakes' derivatives are central differences of their displacement: a step of 1 mm in space,
-// taken in the ship frame's coordinates (their waves are decimetres long and more: (k step)^2 / 6
-// below 1e-4), and 1e-4 s in time (a ship at 10 m/s moves 1 mm in it; the track is searched at
-// each time, and the rest point's 1e-9 m of rounding through latitude and longitude is 1e-6 of the
-// step).
+// m: the wakes' derivatives are central differences of their displacement over this step, taken in
+// the ship frame's coordinates (their waves are decimetres long and more: (k step)^2 / 6 below
+// 1e-4; the rest point's 1e-9 m of rounding through latitude and longitude is 1e-6 of the step).
+// In time too: the pattern is steady in the ship frame and a fixed point falls astern at the
+// ship's speed U, so dD/dt = U dD/db.
 constexpr double kWakeStep = 1e-3;
-constexpr double kWakeTimeStep = 1e-4;
+// Rounds of Newton on the wakes' coordinates linearised about the last searched rest point, each
+// ended by one search of the track at the root found: the coordinates' error there is about
+// |step|^2 / rho (rho the track's radius of curvature, or the planet's on a geodesic), so 2-3
+// rounds meet the tolerance. Exact Newton (a search each iteration) finishes where they do not.
+constexpr int kMaxLinearisedRounds = 6;
 // m of chord: the farthest a queried point may be from the waves' anchor. A renderer keeps its
 // anchor while its camera stays within 100 km of it (kWaveAnchorKeepDistance) and sees waves
 // well inside the horizon from 20 km up (500 km). Within this reach the chart's axes stay a
@@ -139,6 +143,23 @@ double filter_weight(const OceanSettings& ocean, double wavelength, double footp
   return glsl::WaveFilterWeight(ocean.n_min, ocean.n_max, wavelength / footprint);
 }
 
+// The wakes' ship-frame coordinates found by searching their tracks at one rest offset (m, the
+// point's east and north): one per Query::wakes, nullopt where the rest point is in none.
+struct WakeFeet {
+  glm::dvec2 offset{0.0};
+  std::vector<std::optional<ShipWake::Coordinates>> feet;
+};
+
+// The coordinates c moved by the rest offset dp (m, east-north) along their gradients. The
+// gradients are in the searched rest point's east-north frame, which turns from the point's by
+// |D_h| / R (1e-6 rad): that only slows the linearised rounds, each of which ends in a search.
+ShipWake::Coordinates moved(const ShipWake::Coordinates& c, glm::dvec2 dp) {
+  ShipWake::Coordinates m = c;
+  m.behind += glm::dot(c.behind_gradient, dp);
+  m.lateral += glm::dot(c.lateral_gradient, dp);
+  return m;
+}
+
 // What one query needs, fixed while Newton moves the rest point.
 struct Query {
   const Planet* planet = nullptr;
@@ -147,12 +168,10 @@ struct Query {
   double time = 0.0;
   double footprint = 0.0;
   std::vector<FrameWave> waves;        // the scene's, in the point's frame
-  // The wakes with waves somewhere at `time`: each at that time, where it can be non-zero, and
-  // its ShipWake (for the rates' difference in time, once a query).
+  // The wakes with waves somewhere at `time`: each at that time and where it can be non-zero.
   struct WakeNow {
     ShipWake::Instant now;
     GeoBounds bounds;
-    const ShipWake* ship = nullptr;
   };
   std::vector<WakeNow> wakes;
   std::optional<LocalFrame> frame;     // the point's, where calm areas or wakes need lat/lon
@@ -162,6 +181,7 @@ struct Query {
   // m: a bound of |D_h| anywhere: the waves' amplitudes (s <= 1) and, for each wake, its two
   // branches' steepness clamp kMaxTrochoidSteepness / k0 = 0.5 U^2 / g each.
   double horizontal_bound = 0.0;
+  mutable int track_searches = 0;  // SeaPoint::track_searches
 
   // The rest point at `offset` (m, the point's east and north) on the sea at rest, geodetic.
   Geodetic rest_point(glm::dvec2 offset) const {
@@ -175,8 +195,12 @@ struct Query {
   }
 
   // The field at the rest offset, less the wakes' time derivative (Newton needs none; it is
-  // add_wake_rates', once, at the rest point found).
-  Field field(glm::dvec2 offset) const {
+  // add_wake_rates', once, at the rest point found). Each wake's ship-frame coordinates come from
+  // a search of its track at the rest point, kept in `searched` if given; or, with `linearised`,
+  // from those searched at another rest offset moved by their gradients (no search: what Newton
+  // iterates on between searches).
+  Field field(glm::dvec2 offset, WakeFeet* searched = nullptr,
+              const WakeFeet* linearised = nullptr) const {
     Field f;
     for (const FrameWave& w : waves) {
       const double theta = w.argument - w.wavenumber * glm::dot(w.direction, offset);
@@ -215,54 +239,65 @@ struct Query {
       // central differences of their displacement, so that the normal and the rates are the
       // heights': a branch's amplitude and wave vector change across the wake, which the
       // renderer's eq. 3 leaves out (each branch a plane wave there, local_waves.glsl). The
-      // track is searched once, at the rest point: the differences along east and north move
-      // its ship-frame coordinates by their gradients (ShipWake::Coordinates), exact to
-      // O(step^2 / R) against a search at each offset.
-      for (const WakeNow& wake : wakes) {
-        if (!wake.bounds.contains(g.lat, g.lon)) continue;
-        const std::optional<ShipWake::Coordinates> c = wake.now.coordinates(g.lat, g.lon);
+      // differences along east and north move the ship-frame coordinates by their gradients
+      // (ShipWake::Coordinates), exact to O(step^2 / R) against a search at each offset.
+      if (searched) {
+        searched->offset = offset;
+        searched->feet.assign(wakes.size(), std::nullopt);
+      }
+      for (std::size_t k = 0; k < wakes.size(); ++k) {
+        const WakeNow& wake = wakes[k];
+        std::optional<ShipWake::Coordinates> c;
+        if (linearised) {
+          // Where the search found no wake, none: the next search says whether the rest point
+          // has moved into one. sample(c) has only the pattern's own fades, which are 0 at
+          // coordinates()' cuts but for the track's start.
+          if (linearised->feet[k]) c = moved(*linearised->feet[k], offset - linearised->offset);
+        } else if (wake.bounds.contains(g.lat, g.lon)) {
+          c = wake.now.coordinates(g.lat, g.lon);
+          ++track_searches;
+          if (searched) searched->feet[k] = c;
+        }
         if (!c) continue;
         bool reaches = false;
         f.d += wake_displacement(wake.now.sample(*c), &reaches);
         if (!reaches) continue;
         ++f.wakes;
-        const double h = kWakeStep;
-        glm::dvec3 along[2];
-        for (int axis = 0; axis < 2; ++axis) {
-          ShipWake::Coordinates plus = *c, minus = *c;
-          plus.behind += h * c->behind_gradient[axis];
-          plus.lateral += h * c->lateral_gradient[axis];
-          minus.behind -= h * c->behind_gradient[axis];
-          minus.lateral -= h * c->lateral_gradient[axis];
-          along[axis] = (wake_displacement(wake.now.sample(plus)) -
-                         wake_displacement(wake.now.sample(minus))) /
-                        (2.0 * h);
-        }
-        f.d_dx += along[0];
-        f.d_dy += along[1];
+        f.d_dx += wake_difference(wake, *c, glm::dvec2(kWakeStep, 0.0));
+        f.d_dy += wake_difference(wake, *c, glm::dvec2(0.0, kWakeStep));
       }
     }
     return f;
   }
 
-  // Adds to f, the field at the rest offset, the time derivative of each wake whose waves reach
-  // the rest point (central differences in time, the track searched at each time): the rest of
-  // the field is not evaluated again.
-  void add_wake_rates(glm::dvec2 offset, Field& f) const {
-    if (wakes.empty()) return;
-    const Geodetic g = rest_point(offset);
-    for (const WakeNow& wake : wakes) {
-      if (!wake.bounds.contains(g.lat, g.lon)) continue;
-      const std::optional<ShipWake::Coordinates> c = wake.now.coordinates(g.lat, g.lon);
-      if (!c) continue;
+  // A wake's central difference (m per m) over the rest offset `step` (m, east-north), its
+  // coordinates moved by their gradients.
+  glm::dvec3 wake_difference(const WakeNow& wake, const ShipWake::Coordinates& c,
+                             glm::dvec2 step) const {
+    return (wake_displacement(wake.now.sample(moved(c, step))) -
+            wake_displacement(wake.now.sample(moved(c, -step)))) /
+           (2.0 * glm::length(step));
+  }
+
+  // Adds to f, the field at a rest offset whose tracks were searched (`feet`), the time
+  // derivative of each wake whose waves reach the rest point: the pattern is steady in the ship
+  // frame and the point falls astern at the ship's speed, so d/dt = U d/db at fixed y (the
+  // foot stays where it is while the ship sails its segment; across a track point the speed
+  // changes and this is the derivative before it). The rest of the field is not evaluated again.
+  void add_wake_rates(const WakeFeet& feet, Field& f) const {
+    for (std::size_t k = 0; k < wakes.size() && k < feet.feet.size(); ++k) {
+      if (!feet.feet[k]) continue;
+      const ShipWake::Coordinates& c = *feet.feet[k];
       bool reaches = false;
-      (void)wake_displacement(wake.now.sample(*c), &reaches);
+      (void)wake_displacement(wakes[k].now.sample(c), &reaches);
       if (!reaches) continue;
-      const ShipWake::Instant later = wake.ship->at(time + kWakeTimeStep);
-      const ShipWake::Instant earlier = wake.ship->at(time - kWakeTimeStep);
-      f.d_dt += (wake_displacement(later.sample(g.lat, g.lon)) -
-                 wake_displacement(earlier.sample(g.lat, g.lon))) /
-                (later.time() - earlier.time());
+      ShipWake::Coordinates later = c, earlier = c;
+      later.behind += kWakeStep;
+      earlier.behind -= kWakeStep;
+      f.d_dt += wakes[k].now.ship().speed *
+                (wake_displacement(wakes[k].now.sample(later)) -
+                 wake_displacement(wakes[k].now.sample(earlier))) /
+                (2.0 * kWakeStep);
     }
   }
 
@@ -286,18 +321,28 @@ struct Query {
 // |p + D_h(p) - point| for the rest offset p.
 double residual(glm::dvec2 offset, const Field& f) { return glm::length(offset + glm::dvec2(f.d)); }
 
-// A Newton iterate: the rest offset (m), its field and its residual |F| (m).
+// A Newton iterate: the rest offset (m), its field and its residual |F| (m), and the wakes'
+// coordinates where the field's tracks were searched there (empty where it was linearised).
 struct Iterate {
   glm::dvec2 offset{0.0};
   Field f;
   double r = 0.0;
+  WakeFeet searched;
 };
 
-// Newton on F(p) = p + D_h(p) from `start`, while it gains, to q.target: the best iterate.
-// Adds its iterations to `iterations`.
-Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
-  Iterate it{start, q.field(start), 0.0};
-  it.r = residual(it.offset, it.f);
+// The field at `offset`, its tracks searched.
+Iterate evaluate(const Query& q, glm::dvec2 offset) {
+  Iterate it;
+  it.offset = offset;
+  it.f = q.field(offset, &it.searched);
+  it.r = residual(offset, it.f);
+  return it;
+}
+
+// Newton on F(p) = p + D_h(p) from `it`, while it gains, to q.target: the best iterate. With
+// `linearised`, on the field whose wakes' coordinates are those moved from it (Query::field),
+// which must be `it`'s own there. Adds its iterations to `iterations`.
+Iterate newton(const Query& q, Iterate it, const WakeFeet* linearised, int& iterations) {
   for (int n = 0; it.r > q.target && n < kMaxIterations; ++n) {
     ++iterations;
     const Field& f = it.f;
@@ -306,21 +351,42 @@ Iterate newton(const Query& q, glm::dvec2 start, int& iterations) {
     glm::dvec2 step = std::abs(glm::determinant(jacobian)) > kSingularJacobian
                           ? -(glm::inverse(jacobian) * residual_vector)
                           : -residual_vector;
-    glm::dvec2 next = it.offset + step;
-    Field next_field = q.field(next);
-    double next_r = residual(next, next_field);
-    for (int halving = 0; halving < kMaxStepHalvings && !(next_r < it.r); ++halving) {
+    Iterate next;
+    for (int halving = 0;; ++halving) {
+      next.offset = it.offset + step;
+      next.f = linearised ? q.field(next.offset, nullptr, linearised)
+                          : q.field(next.offset, &next.searched);
+      next.r = residual(next.offset, next.f);
+      if (next.r < it.r || halving == kMaxStepHalvings) break;
       step *= 0.5;
-      next = it.offset + step;
-      next_field = q.field(next);
-      next_r = residual(next, next_field);
     }
-    if (!(next_r < it.r)) break;  // no gain: the best iterate stays
-    const bool stalled = it.r <= kSeaStateTolerance && next_r > 0.5 * it.r;  // rounding's floor
-    it = Iterate{next, next_field, next_r};
+    if (!(next.r < it.r)) break;  // no gain: the best iterate stays
+    const bool stalled = it.r <= kSeaStateTolerance && next.r > 0.5 * it.r;  // rounding's floor
+    it = std::move(next);
     if (stalled) break;
   }
   return it;
+}
+
+// The rest point from `start`: with wakes, rounds of Newton on their coordinates linearised about
+// the last searched rest point, each ended by a search at the root it found and kept while it
+// gains (2-3 searches a query against one each iteration); then exact Newton where that stops
+// short of kSeaStateTolerance. The best iterate, its tracks searched.
+Iterate solve(const Query& q, glm::dvec2 start, int& iterations) {
+  Iterate best = evaluate(q, start);
+  if (q.wakes.empty()) return newton(q, std::move(best), nullptr, iterations);
+  for (int round = 0; round < kMaxLinearisedRounds && best.r > q.target; ++round) {
+    const WakeFeet base = best.searched;
+    const Iterate root = newton(q, best, &base, iterations);
+    if (root.offset == best.offset) break;
+    Iterate searched = evaluate(q, root.offset);
+    if (!(searched.r < best.r)) break;
+    const bool stalled = best.r <= kSeaStateTolerance && searched.r > 0.5 * best.r;
+    best = std::move(searched);
+    if (stalled) break;
+  }
+  if (best.r > kSeaStateTolerance) best = newton(q, std::move(best), nullptr, iterations);
+  return best;
 }
 
 }  // namespace
@@ -392,7 +458,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     if (bounds.empty()) continue;
     const double speed = now.ship().speed;
     q.horizontal_bound += 2.0 * ocean::kMaxTrochoidSteepness * speed * speed / ocean::kGravity;
-    q.wakes.push_back({std::move(now), bounds, &wake});
+    q.wakes.push_back({std::move(now), bounds});
   }
   if (!sea.calm.empty() || !q.wakes.empty()) {
     q.frame.emplace(sea.planet, lat, lon, 0.0);
@@ -403,7 +469,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
 
   // Newton on F(p) = p + D_h(p) (the point is the origin), from p = 0.
   SeaPoint out;
-  Iterate best = newton(q, glm::dvec2(0.0), out.iterations);
+  Iterate best = solve(q, glm::dvec2(0.0), out.iterations);
   if (!(best.r <= kSeaStateTolerance)) {
     // Newton stalled (beside a fold, where J is near singular, or on a local minimum of |F|). A
     // rest point exists: the map is p plus a bounded displacement, so it covers the plane. It
@@ -422,8 +488,8 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     std::sort(nodes.begin(), nodes.end(),
               [](const auto& a, const auto& b) { return a.first < b.first; });
     for (std::size_t k = 0; k < nodes.size() && k < kScanStarts; ++k) {
-      const Iterate tried = newton(q, nodes[k].second, out.iterations);
-      if (tried.r < best.r) best = tried;
+      Iterate tried = solve(q, nodes[k].second, out.iterations);
+      if (tried.r < best.r) best = std::move(tried);
       if (best.r <= kSeaStateTolerance) break;
     }
     out.searched = true;
@@ -432,7 +498,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
   Field f = best.f;
   const double r = best.r;
   out.converged = r <= kSeaStateTolerance;
-  q.add_wake_rates(offset, f);
+  q.add_wake_rates(best.searched, f);
 
   out.height = f.d.z;
   const glm::dvec3 tangent_x = glm::dvec3(1.0, 0.0, 0.0) + f.d_dx;
@@ -451,6 +517,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
   out.rest_offset = offset;
   out.calm_scale = f.calm_scale;
   out.wakes = f.wakes;
+  out.track_searches = q.track_searches;
   // Finite or a clear error (DESIGN section 4): no input in range is known to get here.
   for (double v : {out.height, out.normal.x, out.normal.y, out.normal.z, out.velocity.x,
                    out.velocity.y, out.velocity.z, out.height_rate, offset.x, offset.y}) {

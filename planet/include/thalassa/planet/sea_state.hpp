@@ -15,10 +15,11 @@
 // SeaState::at finds that rest point by Newton's method on the horizontal map p -> p + D_h(p)
 // (to 1e-12 m where it gains, 1e-9 m with calm areas or wakes, whose waves are placed by the rest
 // point's latitude and longitude; kSeaStateTolerance at least; where it stalls beside a fold, from
-// the best nodes of a scan of the disc |p| <= max |D_h| that holds the rest point) and evaluates
-// everything there, so the height is the surface's height above the point itself (Eulerian), not
-// the height of the particle that rests below it. A single trochoid's mean height over a wavelength
-// is then -k h^2 / 2, below the sea at rest (tested).
+// the best nodes of a scan of the disc |p| <= max |D_h| that holds the rest point; in a wake, on
+// its ship-frame coordinates linearised between searches of its track, each round ended by a
+// search at the root found) and evaluates everything there, so the height is the surface's height
+// above the point itself (Eulerian), not the height of the particle that rests below it. A single
+// trochoid's mean height over a wavelength is then -k h^2 / 2, below the sea at rest (tested).
 //
 // Frame and units: the point's east-north-up frame (x east, y north, z up along the ellipsoid's
 // normal), metres, seconds. The waves displace each rest point in its own tangent frame; the rest
@@ -78,6 +79,10 @@ struct SeaPoint {
   int iterations = 0;
   bool converged = true;
   bool searched = false;
+  // The ships' tracks searched for the rest point's wake coordinates (ShipWake::Instant::
+  // coordinates, a few microseconds each): 2-3 a query in a wake, where Newton iterates on the
+  // coordinates linearised between searches; 0 where no wake's bounds hold the point.
+  int track_searches = 0;
 };
 
 // Newton's tolerance on the horizontal map: |p + D_h(p) - point| at most this, m, for
