@@ -50,16 +50,21 @@ constexpr double kSingularJacobian = 1e-9;
 // the second derivative jumps (against a gradient of 1.5 |1 - scale| / F mid-fade: 2 %).
 constexpr double kCalmGradientMinStep = 1e-3;
 constexpr double kCalmGradientMaxStep = 0.25;
-// m: the wakes' derivatives are central differences of their displacement over this step, taken in
-// the ship frame's coordinates (their waves are decimetres long and more: (k step)^2 / 6 below
-// 1e-4; the rest point's 1e-9 m of rounding through latitude and longitude is 1e-6 of the step).
+// The wakes' derivatives are central differences of their displacement, taken in the ship
+// frame's coordinates moved by their gradients (so the rest point's 1e-9 m of rounding through
+// latitude and longitude does not enter them), over kWakeStep m or kWakeStepPerWavelength of the
+// shorter branch's wavelength there where that is less: (k step)^2 / 6 = 7e-8 at most. A ship's
+// waves are 2 pi U^2 / g long on its track and shorter across it: 0.16 m at 0.5 m/s, whose
+// divergent waves of a few centimetres a 1 mm step differentiated 3 % wrong (stop 51's review).
 // In time too: the pattern is steady in the ship frame and a fixed point falls astern at the
 // ship's speed U, so dD/dt = U dD/db.
-constexpr double kWakeStep = 1e-3;
+constexpr double kWakeStep = 1e-3;  // m
+constexpr double kWakeStepPerWavelength = 1e-4;
 // Rounds of Newton on the wakes' coordinates linearised about the last searched rest point, each
 // ended by one search of the track at the root found: the coordinates' error there is about
-// |step|^2 / rho (rho the track's radius of curvature, or the planet's on a geodesic), so 2-3
-// rounds meet the tolerance. Exact Newton (a search each iteration) finishes where they do not.
+// |step|^2 / rho (rho the planet's radius on a geodesic; in the fan outside a turn, the distance
+// to its apex), so 2-3 rounds meet the tolerance. Exact Newton (a search each iteration) finishes
+// where they do not: near a turn's apex or the track's start (docs/sea_state.md).
 constexpr int kMaxLinearisedRounds = 6;
 // m of chord: the farthest a queried point may be from the waves' anchor. A renderer keeps its
 // anchor while its camera stays within 100 km of it (kWaveAnchorKeepDistance) and sees waves
@@ -148,6 +153,7 @@ double filter_weight(const OceanSettings& ocean, double wavelength, double footp
 struct WakeFeet {
   glm::dvec2 offset{0.0};
   std::vector<std::optional<ShipWake::Coordinates>> feet;
+  bool in_bounds = false;  // whether any wake's bounds held the rest point (it was searched)
 };
 
 // The coordinates c moved by the rest offset dp (m, east-north) along their gradients. The
@@ -158,6 +164,15 @@ ShipWake::Coordinates moved(const ShipWake::Coordinates& c, glm::dvec2 dp) {
   m.behind += glm::dot(c.behind_gradient, dp);
   m.lateral += glm::dot(c.lateral_gradient, dp);
   return m;
+}
+
+// m: the step of a wake's central differences where its branches are `sample` (kWakeStep).
+double wake_step(const ocean::KelvinWakeSample& sample) {
+  double h = kWakeStep;
+  for (const ocean::WakeWave* w : {&sample.transverse, &sample.divergent})
+    if (w->amplitude > 0.0 && w->wavelength > 0.0)
+      h = std::min(h, kWakeStepPerWavelength * w->wavelength);
+  return h;
 }
 
 // What one query needs, fixed while Newton moves the rest point.
@@ -244,6 +259,7 @@ struct Query {
       if (searched) {
         searched->offset = offset;
         searched->feet.assign(wakes.size(), std::nullopt);
+        searched->in_bounds = false;
       }
       for (std::size_t k = 0; k < wakes.size(); ++k) {
         const WakeNow& wake = wakes[k];
@@ -256,15 +272,20 @@ struct Query {
         } else if (wake.bounds.contains(g.lat, g.lon)) {
           c = wake.now.coordinates(g.lat, g.lon);
           ++track_searches;
-          if (searched) searched->feet[k] = c;
+          if (searched) {
+            searched->feet[k] = c;
+            searched->in_bounds = true;
+          }
         }
         if (!c) continue;
         bool reaches = false;
-        f.d += wake_displacement(wake.now.sample(*c), &reaches);
+        const ocean::KelvinWakeSample sample = wake.now.sample(*c);
+        f.d += wake_displacement(sample, &reaches);
         if (!reaches) continue;
         ++f.wakes;
-        f.d_dx += wake_difference(wake, *c, glm::dvec2(kWakeStep, 0.0));
-        f.d_dy += wake_difference(wake, *c, glm::dvec2(0.0, kWakeStep));
+        const double h = wake_step(sample);
+        f.d_dx += wake_difference(wake, *c, glm::dvec2(h, 0.0));
+        f.d_dy += wake_difference(wake, *c, glm::dvec2(0.0, h));
       }
     }
     return f;
@@ -282,22 +303,26 @@ struct Query {
   // Adds to f, the field at a rest offset whose tracks were searched (`feet`), the time
   // derivative of each wake whose waves reach the rest point: the pattern is steady in the ship
   // frame and the point falls astern at the ship's speed, so d/dt = U d/db at fixed y (the
-  // foot stays where it is while the ship sails its segment; across a track point the speed
-  // changes and this is the derivative before it). The rest of the field is not evaluated again.
+  // foot stays where it is while the ship sails its segment). U is the current segment's: at a
+  // track point's time the ship is on the next one, and this is the derivative after it, as at
+  // the track's end the one before it (a difference in time across either, stop 50's, gave
+  // thousands of m/s). The rest of the field is not evaluated again.
   void add_wake_rates(const WakeFeet& feet, Field& f) const {
     for (std::size_t k = 0; k < wakes.size() && k < feet.feet.size(); ++k) {
       if (!feet.feet[k]) continue;
       const ShipWake::Coordinates& c = *feet.feet[k];
       bool reaches = false;
-      (void)wake_displacement(wakes[k].now.sample(c), &reaches);
+      const ocean::KelvinWakeSample sample = wakes[k].now.sample(c);
+      (void)wake_displacement(sample, &reaches);
       if (!reaches) continue;
+      const double h = wake_step(sample);
       ShipWake::Coordinates later = c, earlier = c;
-      later.behind += kWakeStep;
-      earlier.behind -= kWakeStep;
+      later.behind += h;
+      earlier.behind -= h;
       f.d_dt += wakes[k].now.ship().speed *
                 (wake_displacement(wakes[k].now.sample(later)) -
                  wake_displacement(wakes[k].now.sample(earlier))) /
-                (2.0 * kWakeStep);
+                (2.0 * h);
     }
   }
 
@@ -368,13 +393,15 @@ Iterate newton(const Query& q, Iterate it, const WakeFeet* linearised, int& iter
   return it;
 }
 
-// The rest point from `start`: with wakes, rounds of Newton on their coordinates linearised about
-// the last searched rest point, each ended by a search at the root it found and kept while it
-// gains (2-3 searches a query against one each iteration); then exact Newton where that stops
-// short of kSeaStateTolerance. The best iterate, its tracks searched.
+// The rest point from `start`: where a wake's bounds hold it, rounds of Newton on the wakes'
+// coordinates linearised about the last searched rest point, each ended by a search at the root
+// it found and kept while it gains (2-3 searches a wake against one each iteration); then exact
+// Newton where that stops short of kSeaStateTolerance (near a turn's apex or the track's start,
+// where the coordinates bend within metres). The best iterate, its tracks searched.
 Iterate solve(const Query& q, glm::dvec2 start, int& iterations) {
   Iterate best = evaluate(q, start);
-  if (q.wakes.empty()) return newton(q, std::move(best), nullptr, iterations);
+  // Outside every wake's bounds exact Newton searches nothing (and searches if it moves in).
+  if (!best.searched.in_bounds) return newton(q, std::move(best), nullptr, iterations);
   for (int round = 0; round < kMaxLinearisedRounds && best.r > q.target; ++round) {
     const WakeFeet base = best.searched;
     const Iterate root = newton(q, best, &base, iterations);

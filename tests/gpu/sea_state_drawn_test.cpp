@@ -36,7 +36,7 @@ namespace {
 
 // shaders/ocean/ocean.vert, OCEAN_NEAR_PLANE: depth = this / (distance along the view axis), m.
 constexpr double kNearPlane = 0.01;
-// Every kStride-th pixel in each direction is compared (the queries in a wake cost 0.1 ms each).
+// Every kStride-th pixel in each direction is compared (the queries in a wake cost 40 us each).
 constexpr int kStride = 2;
 // Pixels nearer than this to an edge of the image may see the skirt (4 cells of 2 pixels: the
 // skirt's pixels measured here are within 1 pixel of the edge).

@@ -397,6 +397,33 @@ TEST(SeaState, WakeRatesFollowTheShipRoundATurn) {
       "track searches a query\n",
       compared, worst, compared ? double(searches) / compared : 0.0);
   EXPECT_GE(compared, 20);
+  // A slow ship's waves are centimetres long (0.5 m/s: 0.16 m on its track, shorter across it):
+  // the differences' step follows them. Measured 4.7e-5 (relative to 1 + |rate| + |slope|); a
+  // 1 mm step, 6.2e-4 (3 % in the velocity at worst, stop 51's review).
+  const Scene slow =
+      MakeScene({"camera.lat=20", "camera.lon=-150", "ocean.wind_speed=0",
+                 "wakes=[{\"lat\": 20, \"lon\": -150, \"heading\": 0, \"speed\": 0.5, \"time\": 0, "
+                 "\"amplitude\": 0.3, \"draft\": 0.05}]"});
+  const SeaState slow_sea(slow);
+  double slow_worst = 0.0;
+  int slow_compared = 0;
+  for (int i = 0; i < 8; ++i)
+    for (int j = -4; j <= 4; ++j) {
+      const Geodetic p = Offset(planet, 20.0, -150.0, {0.37 * j + 0.01, -0.5 - 0.83 * i});
+      const SeaPoint s = slow_sea.at(p.lat, p.lon, 0.0);
+      ASSERT_TRUE(s.converged) << i << " " << j;
+      if (s.wakes == 0 || s.normal.z < 0.2) continue;
+      const Differences d = Difference(slow_sea, planet, p.lat, p.lon, 0.0 + 1.0, 1e-5, 1e-5);
+      const SeaPoint later = slow_sea.at(p.lat, p.lon, 1.0);
+      const double off = DifferencesOff(d, later) / (1.0 + std::abs(later.height_rate) +
+                                                     glm::length(glm::dvec2(later.normal)));
+      slow_worst = std::max(slow_worst, off);
+      ++slow_compared;
+    }
+  std::printf("slow ship: %d points, worst slope or rate against the heights' differences %.3g\n",
+              slow_compared, slow_worst);
+  EXPECT_GE(slow_compared, 30);
+  EXPECT_LT(slow_worst, 2e-4);
 }
 
 // Newton in a wake, over 20 s of a buoy in the wake demo's sea (4 m/s, the ferry's 2 m wake; the

@@ -80,8 +80,9 @@ struct SeaPoint {
   bool converged = true;
   bool searched = false;
   // The ships' tracks searched for the rest point's wake coordinates (ShipWake::Instant::
-  // coordinates, a few microseconds each): 2-3 a query in a wake, where Newton iterates on the
-  // coordinates linearised between searches; 0 where no wake's bounds hold the point.
+  // coordinates, a few microseconds each): 2-3 for each wake whose bounds hold the point, where
+  // Newton iterates on the coordinates linearised between searches (hundreds where the disc is
+  // scanned); 0 where no wake's bounds hold it.
   int track_searches = 0;
 };
 
