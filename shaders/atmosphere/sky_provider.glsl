@@ -33,26 +33,37 @@
 // The stereographic sky map: texel (s, t) in [0, 1]^2 holds the radiance arriving from the
 // direction of u = (2 s - 1, 2 t - 1) SKY_MAP_EXTENT, u = (r_x, r_y) / (1 + r_z) in the ENU
 // frame of the observer (s east, t north; |u| <= 1 is the sky, |u| > 1 the below-horizon radiance
-// of the ocean paper's multiple-reflection extension, sec. 6). Mipmapped, anisotropic.
+// of the ocean paper's multiple-reflection extension, sec. 6). Mipmapped; its sampler is
+// isotropic (the anisotropy is SkyMapFilterFootprint's).
 layout(binding = SKY_MAP_BINDING) uniform sampler2D sky_map;
 
-// Most taps of eq. 27's anisotropic filter: 16, as the 16x hardware anisotropy the paper's
-// texture2DGrad had.
-const int SKY_MAP_MAX_TAPS = 16;
+// Most anisotropy of eq. 27's filter: 16, as the 16x hardware anisotropy the paper's
+// texture2DGrad had. Its taps are at most 2 floor(15 / 2) + 3 = 17 (SkyMapTapCount).
+const float SKY_MAP_MAX_ANISOTROPY = 16.0;
 
 // Eq. 27's footprint, as taps in texture space: the anisotropy is done here rather than by the
-// texture unit, as EXT_texture_filter_anisotropic describes it: N = min(ceil(P_max / P_min), 16)
-// trilinear taps spaced along the longer gradient, at the level of detail log2(P_max / N)
-// (P_max, P_min the gradients' lengths in texels). Why not the texture unit: llvmpipe's
-// anisotropic filter returns 0 for scattered pixels of this fetch (measured, Mesa 22.3), and an
-// explicit filter gives the same result on every driver, so the CPU reference and the golden
-// images hold everywhere. The maps' own samplers are therefore isotropic. Shared by the single
-// map (SkyMapRadianceGrad) and the sun-zenith array (SkyMapArrayRadianceGrad).
+// texture unit. Why not the texture unit: llvmpipe's anisotropic filter returns 0 for scattered
+// pixels of this fetch (measured, Mesa 22.3), and an explicit filter gives the same result on
+// every driver, so the CPU reference and the golden images hold everywhere. The maps' own
+// samplers are therefore isotropic. Shared by the single map (SkyMapRadianceGrad) and the
+// sun-zenith array (SkyMapArrayRadianceGrad).
+//
+// The footprint is P_max texels along the longer gradient and P_min across (the gradients'
+// lengths). Each tap is trilinear, w = max(P_min, P_max / 16) texels wide (level of detail
+// log2 w), and the taps' centres cover the segment of length l = P_max - w along the longer
+// gradient, so that taps and segment together span P_max. The segment is integrated by the
+// trapezoid rule from its centre outwards with nodes w apart, and a last, shorter interval to
+// each end: h = l / 2w, n = floor(h), nodes at 0, +-1, ..., +-n and +-h steps. Every weight and
+// node moves continuously with the gradients: the filter has no seams. EXT_texture_filter_
+// anisotropic's N = ceil(P_max / P_min) equal taps at the level of detail log2(P_max / N) jump
+// where the ratio crosses an integer (the level by up to log2(3/2) = 0.58, N by one): across the
+// horizon circle's step, where the far sea reflects a grazing sky, they drew seams of up to 20 %
+// in the sky's reflection along the image's columns (stop 51; tests/gpu/sky_provider_test.cpp).
 struct SkyMapFootprint {
-  vec2 st;     // the footprint's centre, texture coordinates
-  vec2 major;  // the longer gradient, texture coordinates
-  int taps;    // 1 to SKY_MAP_MAX_TAPS
-  float lod;   // level of detail of each tap
+  vec2 st;      // the footprint's centre, texture coordinates
+  vec2 along;   // from one node to the next along the longer gradient (w), texture coordinates
+  float h;      // the segment's half-length, in steps (0: one tap)
+  float lod;    // level of detail of each tap
 };
 
 // The footprint of u (stereographic, u units) and its screen gradients du_dx, du_dy in a map of
@@ -61,22 +72,59 @@ SkyMapFootprint SkyMapFilterFootprint(vec2 u, vec2 du_dx, vec2 du_dy, float size
   const float scale = 0.5 / SKY_MAP_EXTENT;
   const vec2 g_x = du_dx * scale;
   const vec2 g_y = du_dy * scale;
-  const float l_x = length(g_x) * size;  // texels
-  const float l_y = length(g_y) * size;
+  // Texels; 1e20 holds an overflowing gradient to the coarsest level rather than inf / inf.
+  const float l_x = min(length(g_x) * size, 1e20);
+  const float l_y = min(length(g_y) * size, 1e20);
   const float p_max = max(l_x, l_y);
   const float p_min = min(l_x, l_y);
+  const float w = max(p_min, p_max / SKY_MAP_MAX_ANISOTROPY);  // texels
   SkyMapFootprint footprint;
   footprint.st = u * scale + 0.5;
-  footprint.major = l_x >= l_y ? g_x : g_y;
-  footprint.taps =
-      int(clamp(ceil(p_max / max(p_min, 1e-3 * p_max + 1e-9)), 1.0, float(SKY_MAP_MAX_TAPS)));
-  footprint.lod = log2(max(p_max / float(footprint.taps), 1e-9));
+  footprint.lod = log2(max(w, 1e-9));
+  // Below a millionth of a texel the footprint is a point: one tap (and no 0 / 0).
+  const bool point = !(w > 1e-6);
+  footprint.h = point ? 0.0 : max(0.5 * (p_max / w - 1.0), 0.0);
+  footprint.along = point ? vec2(0.0) : (l_x >= l_y ? g_x : g_y) * (w / p_max);
   return footprint;
 }
 
-// Texture coordinates of tap i of the footprint: evenly spaced along the major axis.
-vec2 SkyMapTap(SkyMapFootprint footprint, int i) {
-  return footprint.st + ((float(i) + 0.5) / float(footprint.taps) - 0.5) * footprint.major;
+// The taps of the footprint: the centre, then the pairs of nodes at +-j steps, j = 1 to n, then
+// the ends at +-h steps; one for a point. About ceil(P_max / P_min) + 1: EXT's taps, plus the
+// ends' pair where the ratio is within 1 above an odd integer (the mean over ratios from 1 to 16,
+// 9.5 against 9.0). Anchoring the trapezoid at the ends instead, with the centre blended in,
+// keeps EXT's count continuously, but rippled the far sea's sky by 1-2 % along a row, with a
+// period of about 25 pixels, as its centre's weight moved to the innermost pair (stop 51).
+int SkyMapTapCount(SkyMapFootprint footprint) {
+  return footprint.h > 0.0 ? 2 * int(floor(footprint.h)) + 3 : 1;
+}
+
+// Tap i's texture coordinates and weight (the weights sum to 1): the trapezoid rule's over the
+// nodes 0, 1, ..., n, h of the half-segment (intervals of 1 and, last, e = h - n), mirrored.
+vec2 SkyMapTap(SkyMapFootprint footprint, int i, out float weight) {
+  const float h = footprint.h;
+  if (i == 0) {
+    if (!(h > 0.0)) {
+      weight = 1.0;
+      return footprint.st;
+    }
+    // Node 0 takes half of each neighbouring interval: 1, or e where it is the only node.
+    weight = min(h, 1.0) / (2.0 * h);
+    return footprint.st;
+  }
+  const float n = floor(h);
+  const float e = h - n;
+  const int j = (i + 1) / 2;  // 1, 1, 2, 2, ...
+  const float side = (i % 2 == 1) ? 1.0 : -1.0;
+  float node, half_weight;
+  if (float(j) <= n) {
+    node = float(j);
+    half_weight = float(j) < n ? 1.0 : 0.5 * (1.0 + e);
+  } else {
+    node = h;
+    half_weight = 0.5 * e;
+  }
+  weight = half_weight / (2.0 * h);
+  return footprint.st + side * node * footprint.along;
 }
 
 // The sky map's radiance at u, filtered over the footprint spanned by the gradients du_dx, du_dy
@@ -85,10 +133,13 @@ vec3 SkyMapRadianceGrad(vec2 u, vec2 du_dx, vec2 du_dy) {
   const SkyMapFootprint footprint =
       SkyMapFilterFootprint(u, du_dx, du_dy, float(textureSize(sky_map, 0).x));
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < footprint.taps; ++i) {
-    sum += textureLod(sky_map, SkyMapTap(footprint, i), footprint.lod).rgb;
+  const int taps = SkyMapTapCount(footprint);
+  for (int i = 0; i < taps; ++i) {
+    float weight;
+    const vec2 st = SkyMapTap(footprint, i, weight);
+    sum += weight * textureLod(sky_map, st, footprint.lod).rgb;
   }
-  return sum / float(footprint.taps);
+  return sum;
 }
 
 vec3 SkyMapRadianceLod(vec2 u, float lod) {
@@ -133,10 +184,13 @@ float SkyMapArrayLayer(float cos_sun_zenith) {
 // Eq. 27's anisotropic fetch (SkyMapFilterFootprint) of one layer of the array.
 vec3 SkyMapArrayLayerRadiance(SkyMapFootprint footprint, float layer) {
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < footprint.taps; ++i) {
-    sum += textureLod(sky_map_array, vec3(SkyMapTap(footprint, i), layer), footprint.lod).rgb;
+  const int taps = SkyMapTapCount(footprint);
+  for (int i = 0; i < taps; ++i) {
+    float weight;
+    const vec2 st = SkyMapTap(footprint, i, weight);
+    sum += weight * textureLod(sky_map_array, vec3(st, layer), footprint.lod).rgb;
   }
-  return sum / float(footprint.taps);
+  return sum;
 }
 
 // The array's radiance at u (stereographic, u = (r_x, r_y) / (1 + r_z) in a frame where the sun

@@ -81,10 +81,11 @@ TEST(OceanMethods, ReferenceSkyAndSeaConverge) {
 // mirror direction, for eq. 27's textureGrad and for the SH-prefiltered maps (ocean.sky_filter =
 // "shrm", whose lobe moves to the centre's mirror direction since stop 39): the view from 100 m
 // whose top row is 1 degree below the horizon (0.75 degree a row), the sky term alone, against the
-// reference at 64 samples. Measured with textureGrad: row error 0.143 (mirror) and 0.045 (lobe);
-// the 12 rows nearest the camera 0.69-0.90 and 0.92-0.98 of the reference (together 0.775 and
-// 0.942); but the 6 rows nearest the horizon 0.93-1.10 and 1.01-1.19, with the sun 35 degrees
-// high ahead: there the lobe's shape (eq. 27's width about the new centre) still errs. With shrm,
+// reference at 64 samples. Measured with textureGrad: row error 0.112 (mirror) and 0.041 (lobe);
+// the 12 rows nearest the camera together 0.833 and 0.949 of the reference (before stop 51's
+// seamless filter 0.143 and 0.045, 0.775 and 0.942, rows 0.69-0.90 and 0.92-0.98); but (stop
+// 37) the 6 rows nearest the horizon 0.93-1.10 and 1.01-1.19, with the sun 35 degrees high ahead:
+// there the lobe's shape (eq. 27's width about the new centre) still errs. With shrm,
 // whose maps blur as if seen along the normal and make the slopes isotropic
 // (docs/spherical_harmonics.md), the sky is darker and the centre helps less: row error 0.283
 // (mirror) and 0.227 (lobe), the 12 nearest rows 0.643 and 0.734 of the reference.
