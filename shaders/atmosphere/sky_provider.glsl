@@ -56,7 +56,7 @@ const float SKY_MAP_MAX_ANISOTROPY = 16.0;
 // each end: h = l / 2w, n = floor(h), nodes at 0, +-1, ..., +-n and +-h steps. Every weight and
 // node moves continuously with the gradients: the filter has no seams. EXT_texture_filter_
 // anisotropic's N = ceil(P_max / P_min) equal taps at the level of detail log2(P_max / N) jump
-// where the ratio crosses an integer (the level by up to log2(3/2) = 0.58, N by one): across the
+// where the ratio crosses an integer (N by one, the level by a whole one just above 1): across the
 // horizon circle's step, where the far sea reflects a grazing sky, they drew seams of up to 20 %
 // in the sky's reflection along the image's columns (stop 51; tests/gpu/sky_provider_test.cpp).
 struct SkyMapFootprint {
