@@ -145,6 +145,10 @@ double kelvin_transverse_wavelength(double speed) {
   return k0 > 0.0 ? kTwoPi / k0 : 0.0;
 }
 
+double kelvin_wake_displacement_bound(double speed) {
+  return 2.0 * kMaxTrochoidSteepness * speed * speed / kGravity;
+}
+
 KelvinRoots kelvin_stationary_roots(double tau) {
   KelvinRoots r;
   if (!(tau > 0.0)) {

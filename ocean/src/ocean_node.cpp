@@ -17,6 +17,7 @@
 #include "thalassa/atmosphere/gl/sky_shrm.hpp"
 #include "thalassa/ocean/gl/effective_fresnel_texture.hpp"
 #include "thalassa/ocean/gl/local_features_gpu.hpp"
+#include "thalassa/ocean/kelvin_wake.hpp"
 #include "thalassa/ocean/projected_grid.hpp"
 #include "thalassa/ocean/wave_set.hpp"
 
@@ -626,14 +627,13 @@ class OceanNode final : public gl::Node {
   }
 
   // A bound of how far the waves move a point, m: each wave by its amplitude (calm areas only
-  // scale them down), each wake's two branches by their steepness clamp, 0.5 U^2 / g each
-  // (ocean/kelvin_wake.hpp).
+  // scale them down), each wake by kelvin_wake_displacement_bound.
   double displacement_bound() const {
     double bound = 0.0;
     for (const Wave& wave : waves_.waves) bound += wave.amplitude;
     if (options_.features)
       for (const WakeInFrame& wake : options_.features->wakes)
-        bound += 2.0 * kMaxTrochoidSteepness * wake.params.speed * wake.params.speed / kGravity;
+        bound += kelvin_wake_displacement_bound(wake.params.speed);
     return bound;
   }
 

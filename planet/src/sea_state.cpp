@@ -193,8 +193,8 @@ struct Query {
   ocean::SeaSurface surface;           // the sea at rest in that frame
   double calm_step = kCalmGradientMaxStep;  // m, see kCalmGradientMinStep
   double target = kNewtonTarget;            // m: Newton's, kGeodeticNewtonTarget with a frame
-  // m: a bound of |D_h| anywhere: the waves' amplitudes (s <= 1) and, for each wake, its two
-  // branches' steepness clamp kMaxTrochoidSteepness / k0 = 0.5 U^2 / g each.
+  // m: a bound of |D_h| anywhere: the waves' amplitudes (s <= 1) and each wake's
+  // kelvin_wake_displacement_bound.
   double horizontal_bound = 0.0;
   mutable int track_searches = 0;  // SeaPoint::track_searches
 
@@ -403,8 +403,7 @@ Iterate solve(const Query& q, glm::dvec2 start, int& iterations) {
   // Outside every wake's bounds exact Newton searches nothing (and searches if it moves in).
   if (!best.searched.in_bounds) return newton(q, std::move(best), nullptr, iterations);
   for (int round = 0; round < kMaxLinearisedRounds && best.r > q.target; ++round) {
-    const WakeFeet base = best.searched;
-    const Iterate root = newton(q, best, &base, iterations);
+    const Iterate root = newton(q, best, &best.searched, iterations);
     if (root.offset == best.offset) break;
     Iterate searched = evaluate(q, root.offset);
     if (!(searched.r < best.r)) break;
@@ -483,8 +482,7 @@ SeaPoint SeaState::at(double lat, double lon, double time, double footprint) con
     ShipWake::Instant now = wake.at(time);
     GeoBounds bounds = now.bounds();
     if (bounds.empty()) continue;
-    const double speed = now.ship().speed;
-    q.horizontal_bound += 2.0 * ocean::kMaxTrochoidSteepness * speed * speed / ocean::kGravity;
+    q.horizontal_bound += ocean::kelvin_wake_displacement_bound(now.ship().speed);
     q.wakes.push_back({std::move(now), bounds});
   }
   if (!sea.calm.empty() || !q.wakes.empty()) {

@@ -380,6 +380,8 @@ TEST(KelvinWake, FiniteForSpeedZeroAndExtremeInputs) {
                         kMaxTrochoidSteepness * (1 + 1e-15));
               ASSERT_LE(s.divergent.wavenumber * s.divergent.amplitude,
                         kMaxTrochoidSteepness * (1 + 1e-15));
+              ASSERT_LE(s.transverse.amplitude + s.divergent.amplitude,
+                        kelvin_wake_displacement_bound(speed) * (1 + 1e-15));
             }
           }
         }

@@ -111,6 +111,11 @@ struct KelvinWakeSample {
 double kelvin_transverse_wavenumber(double speed);
 // lambda0 = 2 pi U^2 / g, m (0 below kMinimumWakeSpeed).
 double kelvin_transverse_wavelength(double speed);
+// A bound of how far a wake's two branches move a point horizontally anywhere, m: each trochoid
+// by its amplitude, which the steepness clamp holds to kMaxTrochoidSteepness / k, and
+// k = k0 sec^2(theta) >= k0 = g / U^2: 2 kMaxTrochoidSteepness U^2 / g (U = speed, m/s). The
+// skirt's reach (ocean_node.cpp) and SeaState's scan radius.
+double kelvin_wake_displacement_bound(double speed);
 
 // The two roots t = tan(theta) of y / b = t / (1 + 2 t^2) for tau = |y| / b in
 // [0, 1 / (2 sqrt 2)]: transverse 2 tau / (1 + s), divergent (1 + s) / (4 tau), s = sqrt(1 -
