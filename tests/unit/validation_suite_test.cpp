@@ -233,6 +233,47 @@ TEST(ValidationSuite, Fig10SeasHoldsTheTestsViews) {
     EXPECT_EQ(case_scene(suite, suite.cases[i]).ocean.seed, i % 8 + 1) << suite.cases[i].name;
 }
 
+// data/suites/crosswind.json (stop 52): the default suite's 10 m/s cases with the wind 45 degrees
+// across the view, the sky term alone, measured by the default suite's reference, basic, full
+// and full_nine_samples; the same scenes apart from the wind's direction, so that its numbers
+// compare with the default suite's (docs/validation.md, "The sky map's footprint across the
+// wind").
+TEST(ValidationSuite, CrosswindIsTheDefaultSuitesWindTenAcrossTheView) {
+  const Suite cross =
+      load_suite_file(std::string(THALASSA_SOURCE_DIR) + "/data/suites/crosswind.json");
+  const Suite suite = default_suite();
+  EXPECT_EQ(cross.terms, std::vector<std::string>{"sky"});
+  EXPECT_LT(cross.flicker.frames, 2);
+  EXPECT_FALSE(cross.timing.enabled());
+  ASSERT_EQ(cross.methods.size(), 4u);
+  for (const char* name : {"reference", "basic", "full", "full_nine_samples"})
+    ASSERT_NE(cross.find_method(name), nullptr) << name;
+  std::vector<const SuiteCase*> wind10;
+  for (const SuiteCase& c : suite.cases)
+    if (c.name.starts_with("wind10_")) wind10.push_back(&c);
+  ASSERT_EQ(cross.cases.size(), wind10.size());
+  ASSERT_EQ(wind10.size(), 8u);
+  for (std::size_t i = 0; i < wind10.size(); ++i) {
+    EXPECT_EQ(cross.cases[i].name, wind10[i]->name + "_crosswind");
+    for (const SuiteMethod& m : cross.methods) {
+      const SuiteMethod* own = suite.find_method(m.name);
+      ASSERT_NE(own, nullptr) << m.name;
+      const Scene a = case_scene(cross, cross.cases[i], &m);
+      const Scene b = case_scene(suite, *wind10[i], own);
+      EXPECT_EQ(a.camera, b.camera) << cross.cases[i].name;
+      EXPECT_EQ(a.sun.zenith, b.sun.zenith);
+      EXPECT_EQ(a.sun.azimuth, b.sun.azimuth);
+      EXPECT_EQ(a.image.width, b.image.width);
+      EXPECT_EQ(a.image.height, b.image.height);
+      EXPECT_EQ(b.ocean.wind_direction, b.camera.heading);  // along the view
+      EXPECT_EQ(a.ocean.wind_direction, b.camera.heading + 45.0);
+      OceanSettings turned = a.ocean;
+      turned.wind_direction = b.ocean.wind_direction;
+      EXPECT_EQ(turned, b.ocean) << cross.cases[i].name << " " << m.name;
+    }
+  }
+}
+
 // The stress suite's form (base, cases with expect 2 and an error substring) is the same format.
 TEST(ValidationSuite, StressCasesWithAnExpectedExitStatusFit) {
   const Suite s = load_suite_text(R"({
