@@ -49,15 +49,18 @@ const float SKY_MAP_MAX_ANISOTROPY = 16.0;
 // sun-zenith array (SkyMapArrayRadianceGrad).
 //
 // The footprint is P_max texels along the longer gradient and P_min across (the gradients'
-// lengths), as in EXT_texture_filter_anisotropic. Where the gradients are not perpendicular this
+// lengths), as in EXT_texture_filter_anisotropic. Where the gradients are not perpendicular that
 // is wider across than the ellipse they span (whose minor axis is the parallelogram's area over
-// P_max): the ocean's are nearly parallel at grazing views across the wind, where each slope axis
-// moves the mirror direction mostly in elevation, and P_min then spreads the sky's lobe in azimuth
-// about as widely as in elevation. That is kept on purpose: filtering the ellipse itself was
+// P_max). The ocean's are nearly parallel at grazing views off the wind's axis: each slope axis
+// then moves the mirror direction mostly in elevation, and P_min spreads the sky's lobe in
+// azimuth about as widely as in elevation. That is kept on purpose. The ellipse itself was
 // measured farther from the reference (stop 52: `full`'s sky row error, median over the default
-// suite, 0.0785 -> 0.0935, and over data/suites/crosswind.json 0.0829 -> 0.0908), since the
-// lobe's linearisation at the mean normal (eq. 27) narrows its azimuthal spread too (docs/
-// validation.md, "The sky map's footprint across the wind"). Each tap is trilinear, w = max(P_min, P_max / 16) texels wide (level of detail
+// suite, 0.0785 -> 0.0935; over data/suites/crosswind.json 0.0829 -> 0.0908): eq. 27's
+// linearisation at the mean normal draws the lobe too narrow in azimuth at grazing views, and the
+// reference spreads the sky wider in azimuth than even the visible facets' slopes do (docs/
+// validation.md, "The sky map's footprint across the wind").
+//
+// Each tap is trilinear, w = max(P_min, P_max / 16) texels wide (level of detail
 // log2 w), and the taps' centres cover the segment of length l = P_max - w along the longer
 // gradient, so that taps and segment together span P_max. The segment is integrated by the
 // trapezoid rule from its centre outwards with nodes w apart, and a last, shorter interval to
