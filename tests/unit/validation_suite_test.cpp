@@ -258,18 +258,16 @@ TEST(ValidationSuite, CrosswindIsTheDefaultSuitesWindTenAcrossTheView) {
     for (const SuiteMethod& m : cross.methods) {
       const SuiteMethod* own = suite.find_method(m.name);
       ASSERT_NE(own, nullptr) << m.name;
+      // Every key the two suites set, the same but for the wind's direction.
+      std::vector<std::string> set = case_assignments(cross, cross.cases[i], &m);
+      std::erase_if(set,
+                    [](const std::string& a) { return a.starts_with("ocean.wind_direction="); });
+      EXPECT_EQ(set, case_assignments(suite, *wind10[i], own))
+          << cross.cases[i].name << " " << m.name;
       const Scene a = case_scene(cross, cross.cases[i], &m);
       const Scene b = case_scene(suite, *wind10[i], own);
-      EXPECT_EQ(a.camera, b.camera) << cross.cases[i].name;
-      EXPECT_EQ(a.sun.zenith, b.sun.zenith);
-      EXPECT_EQ(a.sun.azimuth, b.sun.azimuth);
-      EXPECT_EQ(a.image.width, b.image.width);
-      EXPECT_EQ(a.image.height, b.image.height);
       EXPECT_EQ(b.ocean.wind_direction, b.camera.heading);  // along the view
       EXPECT_EQ(a.ocean.wind_direction, b.camera.heading + 45.0);
-      OceanSettings turned = a.ocean;
-      turned.wind_direction = b.ocean.wind_direction;
-      EXPECT_EQ(turned, b.ocean) << cross.cases[i].name << " " << m.name;
     }
   }
 }
