@@ -1,6 +1,7 @@
 // The validation's case runner as a library user calls it (validation/runner.hpp), without the
 // command line: a case rendered, written and measured, its progress told as render_count says,
-// a variant measured against its own reference, and a case refused before rendering.
+// a variant measured against its own reference, a method drawn at a multiple of the reference's
+// pixels, and a case refused before rendering.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -10,6 +11,8 @@
 #include <vector>
 
 #include "test_support.hpp"
+#include "thalassa/planet/renderer.hpp"
+#include "thalassa/validation/metrics.hpp"
 #include "thalassa/validation/runner.hpp"
 
 namespace thalassa {
@@ -101,6 +104,88 @@ TEST(CaseRunner, RendersMeasuresAndTellsItsProgressAsCounted) {
   EXPECT_TRUE(refused.passed());
   EXPECT_TRUE(refused.methods.empty());
   EXPECT_EQ(skipped, validation::render_count(suite, suite.cases[1]));
+  fs::remove_all(dir);
+}
+
+// A method with "supersample": k is the case drawn at k times its width and height, averaged to
+// the reference's pixels before it is measured and written: its row totals are those of the
+// larger render box-filtered, and they are not the method's at the case's own pixels (a pixel a
+// quarter the size resolves more of the waves in its normal).
+TEST(CaseRunner, SupersampledMethodIsItsLargerRenderAveragedToTheReferencesPixels) {
+  const validation::Suite suite = validation::load_suite_text(R"({
+    "suite": "supersample",
+    "base": {"image.width": 24, "image.height": 14, "camera.height": 100, "camera.pitch": -20},
+    "methods": ["reference", "full", {"name": "full_x2", "method": "full", "supersample": 2}],
+    "terms": ["sky"],
+    "flicker": {"frames": 0, "terms": ["sky"]},
+    "timing": {"width": 16, "height": 10, "frames": 1},
+    "reference": {"pixel_samples": 1, "pixel_samples_without_sun": 1,
+                  "check_convergence": false},
+    "cases": [{"name": "near", "set": {}}]
+  })",
+                                                              "supersample.json");
+  const fs::path dir =
+      fs::temp_directory_path() / ("thalassa_case_runner_x2_test_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "images");
+  auto context = test::make_test_context();
+  std::vector<std::string> details;
+  validation::CaseRunOptions options;
+  options.dir = dir.string();
+  options.write_exr = true;
+  options.progress.done = [&](const std::string&, const std::string& detail, double) {
+    details.push_back(detail);
+  };
+  const validation::SuiteCase& near = suite.cases[0];
+  const validation::CaseResult result = validation::run_case(suite, *context, near, options);
+  ASSERT_EQ(result.exit_status, validation::kCaseRendered) << result.message;
+  ASSERT_EQ(result.methods.size(), 3u);
+  const validation::MethodResult& full = result.methods[1];
+  const validation::MethodResult& x2 = result.methods[2];
+  ASSERT_EQ(x2.name, "full_x2");
+  EXPECT_TRUE(full.plain);
+  EXPECT_FALSE(x2.plain);  // not a curve of the rows plots: a variant
+  ASSERT_EQ(x2.terms.size(), 1u);
+
+  // Written at the reference's size.
+  const Image written = read_image((dir / x2.terms[0].exr).string());
+  EXPECT_EQ(written.width, 24);
+  EXPECT_EQ(written.height, 14);
+
+  // The same method and term drawn here at 48 x 28 and averaged 2 x 2.
+  const Scene scene = validation::case_scene(suite, near, suite.find_method("full_x2"));
+  ASSERT_EQ(scene.image.width, 48);
+  ASSERT_EQ(scene.image.height, 28);
+  RendererOptions render_options;
+  render_options.terms = {.sun = false, .sky = true, .sea = false, .air = false};
+  Renderer renderer(*context, scene, render_options);
+  renderer.render();
+  const Image averaged = validation::box_filter(renderer.image(), 2);
+  const validation::ViewGeometry view(validation::case_scene(suite, near));
+  const std::vector<validation::ChannelValues> expected =
+      validation::row_totals(averaged, &view.sea_mask());
+  const std::vector<validation::ChannelValues>& measured = x2.terms[0].metrics.row_totals;
+  const std::vector<validation::ChannelValues>& own = full.terms[0].metrics.row_totals;
+  ASSERT_EQ(measured.size(), 14u);
+  ASSERT_EQ(own.size(), 14u);
+  int sea_rows = 0;
+  double largest_change = 0.0;
+  for (std::size_t y = 0; y < expected.size(); ++y) {
+    if (!std::isfinite(expected[y].l)) {
+      EXPECT_FALSE(std::isfinite(measured[y].l)) << "row " << y;
+      continue;
+    }
+    ++sea_rows;
+    EXPECT_NEAR(measured[y].l, expected[y].l, 1e-5 * expected[y].l) << "row " << y;
+    largest_change = std::max(largest_change, std::abs(measured[y].l / own[y].l - 1.0));
+  }
+  EXPECT_GE(sea_rows, 5);
+  EXPECT_GT(largest_change, 1e-3);
+  // Timed at twice the timing's width and height.
+  bool timed_larger = false;
+  for (const std::string& detail : details)
+    timed_larger = timed_larger || detail.find("full_x2, timed at 32x20") != std::string::npos;
+  EXPECT_TRUE(timed_larger);
   fs::remove_all(dir);
 }
 

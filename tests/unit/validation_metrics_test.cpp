@@ -119,6 +119,34 @@ TEST(ValidationMetrics, ImageScaledByKGivesRowRatiosKAndRelativeErrorsAbsKMinusO
   }
 }
 
+// box_filter: each pixel the mean of its block (factor 1: the image itself), every row's total
+// 1 / factor^2 of its block of rows' together, and a factor that does not divide a side refused.
+TEST(ValidationMetrics, BoxFilterAveragesEachBlockAndKeepsTheRowsTotals) {
+  const Image image = random_image(12, 6, 7);
+  const Image same = box_filter(image, 1);
+  EXPECT_EQ(same.width, 12);
+  EXPECT_EQ(same.rgba, image.rgba);
+  const Image third = box_filter(image, 3);
+  ASSERT_EQ(third.width, 4);
+  ASSERT_EQ(third.height, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x)
+      for (int k = 0; k < 4; ++k) {
+        double sum = 0.0;
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) sum += image.pixel(3 * x + i, 3 * y + j)[k];
+        EXPECT_NEAR(third.pixel(x, y)[k], sum / 9.0, 1e-7) << x << ", " << y << ", " << k;
+      }
+  const std::vector<ChannelValues> fine = row_totals(image);
+  const std::vector<ChannelValues> coarse = row_totals(third);
+  for (int y = 0; y < 2; ++y)
+    EXPECT_NEAR(coarse[y].g, (fine[3 * y].g + fine[3 * y + 1].g + fine[3 * y + 2].g) / 9.0, 1e-6);
+  EXPECT_THROW(box_filter(image, 4), std::invalid_argument);  // 6 rows
+  EXPECT_THROW(box_filter(image, 5), std::invalid_argument);
+  EXPECT_THROW(box_filter(image, 0), std::invalid_argument);
+  EXPECT_THROW(box_filter(image, -2), std::invalid_argument);
+}
+
 TEST(ValidationMetrics, RowTotalsAreSumsOverTheMask) {
   Image image{3, 2, std::vector<float>(24, 0.0f)};
   set_grey(image, 0, 0, 1.0);

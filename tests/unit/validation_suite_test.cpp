@@ -272,6 +272,57 @@ TEST(ValidationSuite, CrosswindIsTheDefaultSuitesWindTenAcrossTheView) {
   }
 }
 
+// data/suites/resolution.json (stop 53) draws the default suite's 10 m/s cases with its full and
+// full_sky_lobe at several multiples of the reference's pixels: each variant's scene is the default
+// suite's method's, key for key, at its multiple of the size (and full_x8_cell2's grid cells 2).
+TEST(ValidationSuite, ResolutionIsTheDefaultSuitesWindTenAtMultiplesOfItsPixels) {
+  const Suite resolution =
+      load_suite_file(std::string(THALASSA_SOURCE_DIR) + "/data/suites/resolution.json");
+  const Suite suite = default_suite();
+  EXPECT_EQ(resolution.terms, std::vector<std::string>{"sky"});
+  EXPECT_LT(resolution.flicker.frames, 2);
+  const struct {
+    const char* name;
+    const char* as;  // the default suite's method it draws
+    int supersample;
+  } methods[] = {{"reference", "reference", 1},
+                 {"full", "full", 1},
+                 {"full_x2", "full", 2},
+                 {"full_x4", "full", 4},
+                 {"full_x8", "full", 8},
+                 {"full_x8_cell2", "full", 8},
+                 {"full_sky_lobe", "full_sky_lobe", 1},
+                 {"full_sky_lobe_x4", "full_sky_lobe", 4},
+                 {"full_sky_lobe_x8", "full_sky_lobe", 8}};
+  ASSERT_EQ(resolution.methods.size(), std::size(methods));
+  std::vector<const SuiteCase*> wind10;
+  for (const SuiteCase& c : suite.cases)
+    if (c.name.starts_with("wind10_")) wind10.push_back(&c);
+  ASSERT_EQ(wind10.size(), 8u);
+  ASSERT_EQ(resolution.cases.size(), wind10.size());
+  for (const auto& expected : methods) {
+    const SuiteMethod* m = resolution.find_method(expected.name);
+    ASSERT_NE(m, nullptr) << expected.name;
+    EXPECT_EQ(m->supersample, expected.supersample) << expected.name;
+    const SuiteMethod* own = suite.find_method(expected.as);
+    ASSERT_NE(own, nullptr) << expected.as;
+    for (std::size_t i = 0; i < wind10.size(); ++i) {
+      EXPECT_EQ(resolution.cases[i].name, wind10[i]->name);
+      std::vector<std::string> set = case_assignments(resolution, resolution.cases[i], m);
+      std::vector<std::string> default_set = case_assignments(suite, *wind10[i], own);
+      if (std::string(expected.name) == "full_x8_cell2") {
+        EXPECT_EQ(set.back(), "ocean.grid_cell=2");
+        set.pop_back();
+      }
+      EXPECT_EQ(set, default_set) << expected.name << " " << wind10[i]->name;
+      const Scene drawn = case_scene(resolution, resolution.cases[i], m);
+      const Scene base = case_scene(suite, *wind10[i], own);
+      EXPECT_EQ(drawn.image.width, base.image.width * expected.supersample);
+      EXPECT_EQ(drawn.image.height, base.image.height * expected.supersample);
+    }
+  }
+}
+
 // The stress suite's form (base, cases with expect 2 and an error substring) is the same format.
 TEST(ValidationSuite, StressCasesWithAnExpectedExitStatusFit) {
   const Suite s = load_suite_text(R"({
@@ -490,6 +541,46 @@ TEST(ValidationSuite, CaseFingerprintFollowsWhatDecidesTheCase) {
   EXPECT_EQ(case_fingerprint(timed, timed.cases[0], env), a);
 }
 
+// "supersample": k draws the method's scene at k times the case's width and height (after the
+// case's and the method's sets), leaves the case's own scene and the other methods' alone, makes
+// the method a variant (not plain) and changes the case's fingerprint; 1 is the method itself.
+TEST(ValidationSuite, SupersampleMultipliesTheMethodsImageSizeOnly) {
+  const auto suite = [](const std::string& supersample) {
+    return load_suite_text(R"({"suite": "x", "base": {"image.width": 40, "image.height": 24},
+      "methods": ["reference", "full", {"name": "f", "method": "full", "supersample": )" +
+                               supersample + R"(, "set": {"ocean.grid_cell": 4}}],
+      "cases": [{"name": "a", "set": {"image.width": 30}}]})",
+                           "x.json");
+  };
+  const Suite four = suite("4");
+  const SuiteMethod* f = four.find_method("f");
+  ASSERT_NE(f, nullptr);
+  EXPECT_EQ(f->supersample, 4);
+  EXPECT_FALSE(f->plain());
+  EXPECT_EQ(four.find_method("full")->supersample, 1);
+  EXPECT_TRUE(four.find_method("full")->plain());
+  const SuiteCase& a = four.cases[0];
+  const Scene drawn = case_scene(four, a, f);
+  EXPECT_EQ(drawn.image.width, 120);
+  EXPECT_EQ(drawn.image.height, 96);
+  EXPECT_EQ(drawn.ocean.grid_cell, 4.0);  // in the larger image's pixels, as a user's
+  EXPECT_EQ(case_scene(four, a).image.width, 30);
+  EXPECT_EQ(case_scene(four, a, four.find_method("full")).image.width, 30);
+  EXPECT_EQ(case_scene(four, a, four.reference_method()).image.height, 24);
+  // The --set form of the method's scene does not hold the multiple: it is the method's own key.
+  const std::vector<std::string> assignments = case_assignments(four, a, f);
+  EXPECT_EQ(std::count(assignments.begin(), assignments.end(), "image.width=30"), 1);
+
+  const Suite one = suite("1");
+  EXPECT_EQ(one.find_method("f")->supersample, 1);
+  EXPECT_FALSE(one.find_method("f")->plain());  // its set still makes it a variant
+  EXPECT_EQ(case_scene(one, one.cases[0], one.find_method("f")).image.width, 30);
+  const std::string env = "thalassa 0.1.0, egl, llvmpipe";
+  EXPECT_NE(case_fingerprint(four, four.cases[0], env), case_fingerprint(one, one.cases[0], env));
+  EXPECT_NE(case_fingerprint(four, four.cases[0], env),
+            case_fingerprint(suite("2"), suite("2").cases[0], env));
+}
+
 // thalassa validate --method / --term: the suite narrowed to some methods and terms keeps its
 // reference (every metric needs it), the cases' method lists and flicker follow, and a name the
 // suite does not have is refused naming the option and what it has.
@@ -631,6 +722,29 @@ TEST(ValidationSuite, BadSuitesAreRefusedWithOneLineNamingTheKeyPath) {
       {R"({"suite": "s", "cases": [{"name": "a", "set": {}, "error": "x"}]})",
        "t.json: cases[0].error: expected no error with expect 0 (an error only with \"expect\": "
        "2), got \"x\""},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "supersample": 0}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[0].supersample: expected an integer in [1, 16], got 0"},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "supersample": 2.5}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[0].supersample: expected an integer in [1, 16], got 2.5"},
+      {R"({"suite": "s", "methods": [{"name": "r", "method": "reference", "supersample": 2}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[0].supersample: expected 1 for the reference (its samples per pixel are "
+       "reference.pixel_samples), got 2"},
+      {R"({"suite": "s", "methods": [{"name": "f", "method": "full", "set": {"image.height": 20}}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[0].set.image.height: expected the case's image size (\"supersample\" "
+       "draws a method at a multiple of it), got a method's own size"},
+      {R"({"suite": "s", "base": {"image.width": 1024}, "methods": ["full", {"name": "f", "method": "full", "supersample": 16}], "cases": [)" +
+           ok_case + "]}",
+       "t.json: methods[1].supersample: image.width: expected an integer in [1, 8192] (pixels), "
+       "got "
+       "16384"},
+      {R"({"suite": "s", "methods": ["full", {"name": "f", "method": "full", "supersample": 8}], "timing": {"width": 1280, "height": 720}, "cases": [)" +
+           ok_case + "]}",
+       "t.json: timing: expected a size that methods[1].supersample (8) keeps within 8192 pixels "
+       "a side, got 1280x720"},
       {R"({"suite": "s", "methods": ["fast"], "cases": [)" + ok_case + "]}",
        "t.json: methods[0]: expected one of reference, basic, full, normals, got \"fast\""},
       {R"({"suite": "s", "methods": ["full", "full"], "cases": [)" + ok_case + "]}",

@@ -55,6 +55,31 @@ double wrap_pi(double a) {
 
 }  // namespace
 
+Image box_filter(const Image& image, int factor) {
+  if (factor < 1 || image.width % factor != 0 || image.height % factor != 0)
+    throw std::invalid_argument("box_filter: a factor of " + std::to_string(factor) +
+                                " for an image of " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) +
+                                " (expected one of at least 1 that divides both sides)");
+  Image out;
+  out.width = image.width / factor;
+  out.height = image.height / factor;
+  out.rgba.assign(static_cast<std::size_t>(out.width) * out.height * 4, 0.0f);
+  const double weight = 1.0 / (static_cast<double>(factor) * factor);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      double sum[4] = {0.0, 0.0, 0.0, 0.0};
+      for (int j = 0; j < factor; ++j)
+        for (int i = 0; i < factor; ++i) {
+          const float* p = image.pixel(factor * x + i, factor * y + j);
+          for (int k = 0; k < 4; ++k) sum[k] += p[k];
+        }
+      float* q = out.pixel(x, y);
+      for (int k = 0; k < 4; ++k) q[k] = static_cast<float>(sum[k] * weight);
+    }
+  return out;
+}
+
 double luminance(const float* rgb) {
   return kLuminanceR * rgb[0] + kLuminanceG * rgb[1] + kLuminanceB * rgb[2];
 }

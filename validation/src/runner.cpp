@@ -122,8 +122,10 @@ class CaseRunner {
       const SuiteMethod* method = suite_.find_method(m.name);
       if (!method) continue;
       Scene scene = case_scene(suite_, c, method);
-      scene.image.width = suite_.timing.width;
-      scene.image.height = suite_.timing.height;
+      // A supersampled method is timed at its own multiple of the timing size: its cost is its
+      // pixels'.
+      scene.image.width = suite_.timing.width * method->supersample;
+      scene.image.height = suite_.timing.height * method->supersample;
       RendererOptions options;
       options.sky_cache = sky_cache_;
       options.method = *ocean::parse_method(method->method);
@@ -356,8 +358,12 @@ class CaseRunner {
       }
       Renderer renderer(context_, s, options);
       renderer.render();
-      rendered.frames.push_back(renderer.image());
-      rendered.problems.push_back(nonfinite_report(rendered.frames.back(), renderer));
+      rendered.problems.push_back(nonfinite_report(renderer.image(), renderer));
+      // A supersampled method's pixels averaged to the reference's (its scene is drawn at
+      // supersample times the case's size: case_scene_builder).
+      rendered.frames.push_back(method.supersample > 1
+                                    ? box_filter(renderer.image(), method.supersample)
+                                    : renderer.image());
       // The reference's sea alone (its pixels merged with image()'s by render_case); other
       // methods compare as drawn.
       rendered.compared.push_back(options.method == ocean::OceanMethod::reference

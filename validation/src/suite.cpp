@@ -157,8 +157,8 @@ SuiteMethod parse_method(const json& m, std::string_view source, const std::stri
   if (!m.is_object())
     fail(source, at, "a method name or an object {\"name\": ..., \"method\": ..., \"set\": {...}}",
          describe(m));
-  static constexpr std::string_view kKeys[] = {"name", "method", "description", "set",
-                                               "own_reference"};
+  static constexpr std::string_view kKeys[] = {"name", "method",        "description",
+                                               "set",  "own_reference", "supersample"};
   only_known(m, kKeys, source, at + ".");
   if (!m.contains("name")) fail(source, at + ".name", "a name of a-z, 0-9 and _", "none");
   method.name = name_at(m["name"], source, at + ".name");
@@ -167,12 +167,28 @@ SuiteMethod parse_method(const json& m, std::string_view source, const std::stri
   if (m.contains("description"))
     method.description = string_at(m["description"], source, at + ".description");
   if (m.contains("set")) method.set = overrides_at(m["set"], source, at + ".set", true);
+  // The metrics compare each method's image with the reference's, pixel for pixel.
+  for (const SceneOverride& o : method.set)
+    if (o.key == "image.width" || o.key == "image.height")
+      fail(source, at + ".set." + o.key,
+           "the case's image size (\"supersample\" draws a method at a multiple of it)",
+           "a method's own size");
   if (m.contains("own_reference")) {
     method.own_reference = bool_at(m["own_reference"], source, at + ".own_reference");
     if (method.own_reference && (method.set.empty() || method.method == "reference"))
       fail(source, at + ".own_reference",
            "true only for a variant (a `set`) of a method other than the reference",
            method.set.empty() ? "a method without a set" : "the reference");
+  }
+  if (m.contains("supersample")) {
+    method.supersample =
+        integer_at(m["supersample"], source, at + ".supersample", 1, kMaxSupersample);
+    // The reference is what the others are box-filtered to: its pixels' samples are
+    // reference.pixel_samples.
+    if (method.supersample > 1 && method.method == "reference")
+      fail(source, at + ".supersample",
+           "1 for the reference (its samples per pixel are reference.pixel_samples)",
+           std::to_string(method.supersample));
   }
   return method;
 }
@@ -204,25 +220,39 @@ void append_labelled(std::vector<LabelledOverride>& out, const std::vector<Scene
     out.push_back({o.assignment(), std::string(source) + ": " + key});
 }
 
-// The base scene file's text (if any) under `overrides`, built: a SceneError names the suite
-// file and the part of it the bad value came from.
-void build_or_fail(const std::string& scene_text, const std::string& scene_file,
-                   const std::vector<LabelledOverride>& overrides) {
-  try {
-    SceneBuilder builder;
-    if (!scene_file.empty()) builder.load_text(scene_text, scene_file);
-    for (const LabelledOverride& o : overrides) builder.set(o.assignment, o.source);
-    builder.build();
-  } catch (const SceneError& e) {
-    throw SuiteError(e.what());
-  }
-}
-
 // "methods[i]": where a method is in the suite file (by its unique name).
 std::string method_key(const Suite& suite, const SuiteMethod& method) {
   for (std::size_t i = 0; i < suite.methods.size(); ++i)
     if (suite.methods[i].name == method.name) return "methods[" + std::to_string(i) + "]";
   return "method " + method.name;
+}
+
+// Lays `method`'s supersampling (SuiteMethod::supersample) over `builder`: the image's width and
+// height as the overrides so far leave them, times it, with the scene's checks, which name the
+// method's key ("suite.json: methods[3].supersample: image.width: expected an integer in
+// [1, 8192], got 16384"). Nothing for no method or a supersample of 1.
+void set_supersampled_size(SceneBuilder& builder, const Suite& suite, const SuiteMethod* method) {
+  if (!method || method->supersample <= 1) return;
+  const ImageSettings image = builder.build().image;
+  const std::string source = suite.source + ": " + method_key(suite, *method) + ".supersample";
+  builder.set("image.width=" + std::to_string(image.width * method->supersample), source);
+  builder.set("image.height=" + std::to_string(image.height * method->supersample), source);
+}
+
+// The base scene file's text (if any) under `overrides`, and `method`'s supersampling, built: a
+// SceneError names the suite file and the part of it the bad value came from.
+void build_or_fail(const std::string& scene_text, const Suite& suite,
+                   const std::vector<LabelledOverride>& overrides,
+                   const SuiteMethod* method = nullptr) {
+  try {
+    SceneBuilder builder;
+    if (!suite.scene_file.empty()) builder.load_text(scene_text, suite.scene_file);
+    for (const LabelledOverride& o : overrides) builder.set(o.assignment, o.source);
+    set_supersampled_size(builder, suite, method);
+    builder.build();
+  } catch (const SceneError& e) {
+    throw SuiteError(e.what());
+  }
 }
 
 // "cases[i]": where a case is in the suite file (which `validate --case` may have filtered).
@@ -294,7 +324,7 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
   {
     std::vector<LabelledOverride> base;
     append_labelled(base, suite.base, source, "base");
-    build_or_fail(scene_text, suite.scene_file, base);
+    build_or_fail(scene_text, suite, base);
   }
 
   // Methods and variants.
@@ -358,6 +388,16 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     suite.timing.height = integer_at(t["height"], source, "timing.height", 1, 8192);
     if (t.contains("frames"))
       suite.timing.frames = integer_at(t["frames"], source, "timing.frames", 1, 100);
+    // A supersampled method is timed at its multiple of the size (runner.cpp), which must be an
+    // image the scene allows.
+    for (const SuiteMethod& m : suite.methods) {
+      const int most = std::max(suite.timing.width, suite.timing.height) * m.supersample;
+      if (most > 8192)
+        fail(source, "timing",
+             "a size that " + method_key(suite, m) + ".supersample (" +
+                 std::to_string(m.supersample) + ") keeps within 8192 pixels a side",
+             std::to_string(suite.timing.width) + "x" + std::to_string(suite.timing.height));
+    }
   }
 
   if (doc.contains("reference")) {
@@ -503,13 +543,13 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     } else {
       for (const SuiteMethod& m : suite.methods) sc.methods.push_back(m.name);
     }
-    // A case expected to render: its scene, and its scene with each method's set, must build.
+    // A case expected to render: its scene, and its scene with each method's set and
+    // supersampling, must build.
     if (sc.expected_exit == 0) {
-      build_or_fail(scene_text, suite.scene_file, case_overrides(suite, sc, nullptr));
+      build_or_fail(scene_text, suite, case_overrides(suite, sc, nullptr));
       for (const std::string& name : sc.methods) {
         const SuiteMethod& m = *suite.find_method(name);
-        if (!m.set.empty())
-          build_or_fail(scene_text, suite.scene_file, case_overrides(suite, sc, &m));
+        if (!m.plain()) build_or_fail(scene_text, suite, case_overrides(suite, sc, &m), &m);
       }
     }
     suite.cases.push_back(std::move(sc));
@@ -614,6 +654,7 @@ SceneBuilder case_scene_builder(const Suite& suite, const SuiteCase& c, const Su
   if (!suite.scene_file.empty()) builder.load_file(suite.scene_file);
   for (const LabelledOverride& o : case_overrides(suite, c, method))
     builder.set(o.assignment, o.source);
+  set_supersampled_size(builder, suite, method);
   return builder;
 }
 
@@ -667,6 +708,7 @@ std::string case_fingerprint(const Suite& suite, const SuiteCase& c, std::string
   for (const std::string& name : c.methods) {
     const SuiteMethod* m = suite.find_method(name);
     if (!m) continue;  // load_suite_text refuses such a case
+    // (A supersampled method's scene is drawn at its larger size, which its text holds.)
     methods.push_back({{"name", m->name},
                        {"method", m->method},
                        {"own_reference", m->own_reference},

@@ -98,6 +98,14 @@ class ViewGeometry {
   std::vector<double> beta_, weight_;
 };
 
+// The image averaged over blocks of factor x factor pixels (every channel, alpha too), for a
+// method drawn at `factor` times the reference's pixels (SuiteMethod::supersample): pixel (x, y)
+// of the result is the mean of pixels [factor x, factor (x + 1)) x [factor y, factor (y + 1)),
+// in double. A mean, so that radiance stays radiance: a row of the result totals (row_totals)
+// 1 / factor^2 of its factor rows' totals together. Throws std::invalid_argument unless factor
+// >= 1 divides both the width and the height.
+Image box_filter(const Image& image, int factor);
+
 // ---------------------------------------------------------------------------------------------
 // Per-row radiance (paper 000, fig. 10, right column).
 

@@ -43,6 +43,9 @@ struct SceneOverride {
 
 // The ocean's shading methods (thalassa render --method).
 inline constexpr std::string_view kMethods[] = {"reference", "basic", "full", "normals"};
+// The most pixels per reference pixel a method may draw along each axis (SuiteMethod::supersample):
+// 16 x 16 times the pixels of a suite's image, 2048 x 1152 for its usual 128 x 72.
+inline constexpr int kMaxSupersample = 16;
 // The light terms a suite measures: the renderer's --terms items and "all" (every term as the
 // user sees it: --terms sun,sky,sea,air).
 inline constexpr std::string_view kTerms[] = {"sun", "sky", "sea", "air", "all"};
@@ -60,9 +63,16 @@ struct SuiteMethod {
   // with the same `set` ("reference_" + name in the report), rather than the case's. A variant
   // that changes how a sea is drawn (ocean.grid_cell, ocean.sky_filter) keeps the case's.
   bool own_reference = false;
-  // A plain method (no `set`): drawn on the per-row radiance plots (fig. 10). Every method is
-  // on the error-against-time plot.
-  bool plain() const { return set.empty(); }
+  // Pixels per reference pixel along each axis: the method draws the case at supersample times
+  // its width and height, and each block of supersample x supersample pixels is averaged
+  // (box_filter in metrics.hpp) into the pixel of the reference's size that the metrics compare.
+  // It measures the method at the resolution a user renders at (the suite's images are sized for
+  // the reference's cost): which waves a pixel resolves, and the grid's cells (ocean.grid_cell is
+  // in pixels), follow the pixel. Its frame time is the larger image's. 1 for the reference.
+  int supersample = 1;
+  // A plain method (no `set`, drawn at the reference's pixels): drawn on the per-row radiance
+  // plots (fig. 10). Every method is on the error-against-time plot.
+  bool plain() const { return set.empty() && supersample == 1; }
 };
 
 struct SuiteCase {
