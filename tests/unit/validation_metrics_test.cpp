@@ -147,6 +147,33 @@ TEST(ValidationMetrics, BoxFilterAveragesEachBlockAndKeepsTheRowsTotals) {
   EXPECT_THROW(box_filter(image, -2), std::invalid_argument);
 }
 
+// supersampled_for_comparison: at a sea pixel the mean of its block's sea pixels only (all of them
+// where none is sea), elsewhere box_filter's mean; masks of the wrong size refused.
+TEST(ValidationMetrics, SupersampledForComparisonAveragesTheSeaAloneAtSeaPixels) {
+  const Image image = random_image(6, 4, 11);
+  PixelMask fine{6, 4, std::vector<std::uint8_t>(24, 0)};
+  // Block (0, 0): its lower row is sea; block (1, 0): none is; block (2, 1): one pixel is.
+  fine.inside[1 * 6 + 0] = fine.inside[1 * 6 + 1] = 1;
+  fine.inside[3 * 6 + 5] = 1;
+  PixelMask coarse{3, 2, std::vector<std::uint8_t>(6, 0)};
+  coarse.inside[0] = coarse.inside[1] = coarse.inside[1 * 3 + 2] = 1;
+  const Image plain = box_filter(image, 2);
+  const Image sea = supersampled_for_comparison(image, 2, fine, coarse);
+  ASSERT_EQ(sea.width, 3);
+  ASSERT_EQ(sea.height, 2);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(sea.pixel(0, 0)[k], (image.pixel(0, 1)[k] + image.pixel(1, 1)[k]) / 2.0, 1e-7);
+    EXPECT_EQ(sea.pixel(1, 0)[k], plain.pixel(1, 0)[k]);  // sea, but no fine pixel of it is
+    EXPECT_EQ(sea.pixel(2, 1)[k], image.pixel(5, 3)[k]);
+    EXPECT_EQ(sea.pixel(0, 1)[k], plain.pixel(0, 1)[k]);  // not sea: every pixel
+    EXPECT_EQ(sea.pixel(2, 0)[k], plain.pixel(2, 0)[k]);
+  }
+  EXPECT_NE(sea.pixel(0, 0)[1], plain.pixel(0, 0)[1]);
+  EXPECT_THROW(supersampled_for_comparison(image, 2, coarse, coarse), std::invalid_argument);
+  EXPECT_THROW(supersampled_for_comparison(image, 2, fine, fine), std::invalid_argument);
+  EXPECT_THROW(supersampled_for_comparison(image, 3, fine, coarse), std::invalid_argument);
+}
+
 TEST(ValidationMetrics, RowTotalsAreSumsOverTheMask) {
   Image image{3, 2, std::vector<float>(24, 0.0f)};
   set_grey(image, 0, 0, 1.0);

@@ -145,6 +145,7 @@ Report synthetic_report() {
   double seed = 1.0;
   for (const auto& m : methods) {
     MethodResult r{m.name, m.method, m.plain, {}, {}};
+    if (m.name == "full_cell4") r.supersample = 3;  // read back as written (stop 53)
     for (const char* term : {"sun", "all"}) {
       TermResult t;
       t.term = term;
@@ -421,6 +422,7 @@ TEST_F(ValidationReport, CsvAndJsonReadBackToTheSameNumbers) {
     const MethodResult &a = back.cases[0].methods[mi], &b = c.methods[mi];
     EXPECT_EQ(a.name, b.name);
     EXPECT_EQ(a.plain, b.plain);
+    EXPECT_EQ(a.supersample, b.supersample);
     EXPECT_EQ(a.convergence, b.convergence);
     EXPECT_EQ(a.lattice_convergence, b.lattice_convergence);
     EXPECT_EQ(a.lattice_cells_per_wavelength, b.lattice_cells_per_wavelength);
@@ -511,19 +513,22 @@ TEST_F(ValidationReport, Fig10ClaimTakesTheReferencesPerRowUncertainty) {
 
 // A report of stop 22 or before has no mean_row_deviation nor row_error: they are read back as
 // its rows' mean, and its rows' error against the rows of the reference each method was
-// measured against.
+// measured against; nor a supersample (stop 53), read back as 1.
 TEST_F(ValidationReport, AnOlderReportGetsItsRowMetricsFromItsRows) {
   const Report report = synthetic_report();
   nlohmann::ordered_json j = nlohmann::ordered_json::parse(report_json(report));
-  for (auto& jm : j["cases"][0]["methods"])
+  for (auto& jm : j["cases"][0]["methods"]) {
+    jm.erase("supersample");  // before stop 53: every method at the reference's pixels
     for (auto& jt : jm["terms"]) {
       jt.erase("mean_row_deviation");
       jt.erase("row_error");
     }
+  }
   const Report back = report_from_json(j.dump());
   const CaseResult& c = back.cases[0];
   ASSERT_EQ(c.methods[0].name, "reference");
-  for (const MethodResult& m : c.methods)
+  for (const MethodResult& m : c.methods) {
+    EXPECT_EQ(m.supersample, 1) << m.name;
     for (std::size_t ti = 0; ti < m.terms.size(); ++ti) {
       const TermMetrics& t = m.terms[ti].metrics;
       EXPECT_EQ(t.mean_row_deviation, mean_row_deviation(t.row_ratios)) << m.name;
@@ -532,6 +537,7 @@ TEST_F(ValidationReport, AnOlderReportGetsItsRowMetricsFromItsRows) {
       ASSERT_TRUE(std::isfinite(want));
       EXPECT_EQ(t.row_error, want) << m.name;
     }
+  }
 }
 
 // Over the cases: per method and term the median and the largest of each case's errors, the

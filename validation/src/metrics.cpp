@@ -55,27 +55,62 @@ double wrap_pi(double a) {
 
 }  // namespace
 
-Image box_filter(const Image& image, int factor) {
+namespace {
+
+void check_factor(const Image& image, int factor, const char* what) {
   if (factor < 1 || image.width % factor != 0 || image.height % factor != 0)
-    throw std::invalid_argument("box_filter: a factor of " + std::to_string(factor) +
+    throw std::invalid_argument(std::string(what) + ": a factor of " + std::to_string(factor) +
                                 " for an image of " + std::to_string(image.width) + "x" +
                                 std::to_string(image.height) +
                                 " (expected one of at least 1 that divides both sides)");
-  Image out;
-  out.width = image.width / factor;
-  out.height = image.height / factor;
+}
+
+// The mean, in double, of the pixels of block (x, y) (factor x factor of them) for which
+// `counts(i, j)` holds (the pixel's image coordinates); all of them where none does.
+template <class Counts>
+void block_mean(const Image& image, int factor, int x, int y, Counts counts, float* out) {
+  for (const bool selective : {true, false}) {
+    double sum[4] = {0.0, 0.0, 0.0, 0.0};
+    int n = 0;
+    for (int j = factor * y; j < factor * (y + 1); ++j)
+      for (int i = factor * x; i < factor * (x + 1); ++i) {
+        if (selective && !counts(i, j)) continue;
+        const float* p = image.pixel(i, j);
+        for (int k = 0; k < 4; ++k) sum[k] += p[k];
+        ++n;
+      }
+    if (n == 0) continue;
+    for (int k = 0; k < 4; ++k) out[k] = static_cast<float>(sum[k] / n);
+    return;
+  }
+}
+
+}  // namespace
+
+Image box_filter(const Image& image, int factor) {
+  check_factor(image, factor, "box_filter");
+  Image out{image.width / factor, image.height / factor, {}};
   out.rgba.assign(static_cast<std::size_t>(out.width) * out.height * 4, 0.0f);
-  const double weight = 1.0 / (static_cast<double>(factor) * factor);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x)
+      block_mean(
+          image, factor, x, y, [](int, int) { return true; }, out.pixel(x, y));
+  return out;
+}
+
+Image supersampled_for_comparison(const Image& image, int factor, const PixelMask& image_sea,
+                                  const PixelMask& sea_mask) {
+  check_factor(image, factor, "supersampled_for_comparison");
+  check_mask(image, image_sea, "supersampled_for_comparison");
+  Image out{image.width / factor, image.height / factor, {}};
+  check_mask(out, sea_mask, "supersampled_for_comparison");
+  out.rgba.assign(static_cast<std::size_t>(out.width) * out.height * 4, 0.0f);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
-      double sum[4] = {0.0, 0.0, 0.0, 0.0};
-      for (int j = 0; j < factor; ++j)
-        for (int i = 0; i < factor; ++i) {
-          const float* p = image.pixel(factor * x + i, factor * y + j);
-          for (int k = 0; k < 4; ++k) sum[k] += p[k];
-        }
-      float* q = out.pixel(x, y);
-      for (int k = 0; k < 4; ++k) q[k] = static_cast<float>(sum[k] * weight);
+      const bool sea = sea_mask(x, y);
+      block_mean(
+          image, factor, x, y, [&](int i, int j) { return !sea || image_sea(i, j); },
+          out.pixel(x, y));
     }
   return out;
 }

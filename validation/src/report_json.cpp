@@ -111,6 +111,7 @@ std::string report_json(const Report& report) {
       jm["method"] = m.method;
       jm["plain"] = m.plain;
       jm["reference"] = m.reference;
+      jm["supersample"] = m.supersample;
       if (m.timing_ms) jm["timing_ms"] = *m.timing_ms;
       jm["convergence"] = ojson::object();
       for (const auto& [term, change] : m.convergence) jm["convergence"][term] = change;
@@ -238,6 +239,7 @@ Report report_from_json(const std::string& json_text) {
       m.method = jm.at("method");
       m.plain = jm.at("plain");
       m.reference = jm.value("reference", std::string());
+      m.supersample = jm.value("supersample", 1);
       m.timing_ms = optional_from(jm, "timing_ms");
       for (const auto& [term, change] : jm.at("convergence").items())
         m.convergence.push_back({term, get_number(change)});

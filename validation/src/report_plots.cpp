@@ -276,14 +276,17 @@ std::string error_time_plot(const std::string& gnuplot, const fs::path& plots, c
     script += "set linetype " + std::to_string(i + 1) + " lc rgb '" + kMethodColour[i] + "'\n";
   script += "set linetype cycle " + std::to_string(kColours) + "\n";
   // A double-quoted gnuplot string (for its line break): the names hold no quote.
-  script += "set multiplot layout 1,2 title \"" + c.name +
-            ": error over the sea against frame time" +
-            (c.timing.enabled() ? "\\n(methods timed at " + timing_text(c.timing) +
-                                      " with every term; the reference at the image size)"
-                                : std::string()) +
-            "\" font ',10' margins 0.08,0.78,0.12,0.88 spacing 0.09\n"
-            "set grid\nset logscale x\nunset key\n"
-            "set xlabel 'frame time (ms)'\n";
+  const bool supersampled = std::any_of(c.methods.begin(), c.methods.end(),
+                                        [](const MethodResult& m) { return m.supersample > 1; });
+  script +=
+      "set multiplot layout 1,2 title \"" + c.name + ": error over the sea against frame time" +
+      (c.timing.enabled() ? "\\n(methods timed at " + timing_text(c.timing) +
+                                (supersampled ? " (a supersampled one at its multiple)" : "") +
+                                " with every term; the reference at the image size)"
+                          : std::string()) +
+      "\" font ',10' margins 0.08,0.78,0.12,0.88 spacing 0.09\n"
+      "set grid\nset logscale x\nunset key\n"
+      "set xlabel 'frame time (ms)'\n";
   // The x range covers every time, the reference's included (arrows do not widen it).
   double lo = HUGE_VAL, hi = 0.0;
   for (const MethodResult& m : c.methods)

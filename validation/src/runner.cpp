@@ -39,7 +39,8 @@ bool renders_reference(const Suite& suite, const SuiteCase& c) {
 struct Rendered {
   std::vector<Image> frames;
   // What the metrics compare, per frame: the frames themselves, or for the reference the
-  // frames with each sea pixel's sea alone (reference_for_comparison).
+  // frames with each sea pixel's sea alone (reference_for_comparison), or for a supersampled
+  // method its sea pixels' sea alone (supersampled_for_comparison).
   std::vector<Image> compared;
   RenderStats stats;
   // Per frame: what in it is not finite (nonfinite_report), "" when nothing.
@@ -190,10 +191,15 @@ class CaseRunner {
     for (const Job& job : jobs) {
       const SuiteMethod* method = job.method;
       const Scene scene = case_scene(suite_, c, method);
+      // A supersampled method's view at its own size, whose sea pixels are those compared at
+      // the sea pixels of the case's (supersampled_for_comparison).
+      std::optional<ViewGeometry> supersampled_view;
+      if (method->supersample > 1) supersampled_view.emplace(scene);
       MethodResult m;
       m.name = method->name;
       m.method = method->method;
       m.plain = method->plain();
+      m.supersample = method->supersample;
       // A variant's own reference is measured against itself, like the case's.
       if (!job.against.empty()) m.reference = "reference_" + job.against;
       // The sun's lattice converges once per reference, on its first term with the sun (the
@@ -216,6 +222,10 @@ class CaseRunner {
         const bool measure_lattice = job.is_reference && terms.sun && !lattice_measured;
         Rendered rendered =
             render_term(c, *method, scene, term, terms, measure_lattice, lattice, sun_cache);
+        if (supersampled_view)
+          for (Image& compared : rendered.compared)
+            compared = supersampled_for_comparison(compared, method->supersample,
+                                                   supersampled_view->sea_mask(), view.sea_mask());
         if (job.is_reference)
           for (std::size_t k = 0; k < rendered.compared.size(); ++k)
             rendered.compared[k] =
@@ -364,11 +374,13 @@ class CaseRunner {
       rendered.frames.push_back(method.supersample > 1
                                     ? box_filter(renderer.image(), method.supersample)
                                     : renderer.image());
-      // The reference's sea alone (its pixels merged with image()'s by render_case); other
-      // methods compare as drawn.
+      // The reference's sea alone (its pixels merged with image()'s by render_case); a
+      // supersampled method's image at its own size (render_case averages it); other methods
+      // compare as drawn.
       rendered.compared.push_back(options.method == ocean::OceanMethod::reference
                                       ? renderer.reference_sea_image()
-                                      : rendered.frames.back());
+                                  : method.supersample > 1 ? renderer.image()
+                                                           : rendered.frames.back());
       if (k == 0) rendered.stats = renderer.stats();
       const double seconds = seconds_since(start);
       char detail[160];

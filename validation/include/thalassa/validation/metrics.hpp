@@ -105,6 +105,15 @@ class ViewGeometry {
 // 1 / factor^2 of its factor rows' totals together. Throws std::invalid_argument unless factor
 // >= 1 divides both the width and the height.
 Image box_filter(const Image& image, int factor);
+// What the metrics compare of a method drawn at `factor` times the reference's pixels:
+// box_filter's means, but at each pixel whose centre sees the sea (`sea_mask`, the view's
+// ViewGeometry::sea_mask at the reference's size) the mean of its block's pixels that see the
+// sea too (`image_sea`, the same at the image's size; all of them where none does). The sea alone
+// there, as reference_for_comparison compares the reference's: at the pixels the horizon crosses
+// the plain mean holds the sky above it, up to 16 % of the horizon band's sea at 4 x 4 in stop
+// 53's first run. Throws std::invalid_argument as box_filter does, or for masks of other sizes.
+Image supersampled_for_comparison(const Image& image, int factor, const PixelMask& image_sea,
+                                  const PixelMask& sea_mask);
 
 // ---------------------------------------------------------------------------------------------
 // Per-row radiance (paper 000, fig. 10, right column).

@@ -82,6 +82,9 @@ struct MethodResult {
   // kResolvedRowFraction); the other methods are compared with it on those rows only, for that
   // term. Before stop 22 the rows of sky alone were counted too.
   std::vector<std::pair<std::string, int>> resolved_rows;
+  // SuiteMethod::supersample: drawn at this many pixels per reference pixel along each axis, and
+  // timed at this multiple of the case's TimingSettings (1 in reports before stop 53).
+  int supersample = 1;
 };
 
 // A row counts as resolved by the reference's sun when at least this fraction of it is.
