@@ -53,10 +53,6 @@ double wrap_pi(double a) {
   return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
-}  // namespace
-
-namespace {
-
 void check_factor(const Image& image, int factor, const char* what) {
   if (factor < 1 || image.width % factor != 0 || image.height % factor != 0)
     throw std::invalid_argument(std::string(what) + ": a factor of " + std::to_string(factor) +

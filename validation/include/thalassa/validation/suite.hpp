@@ -64,8 +64,9 @@ struct SuiteMethod {
   // that changes how a sea is drawn (ocean.grid_cell, ocean.sky_filter) keeps the case's.
   bool own_reference = false;
   // Pixels per reference pixel along each axis: the method draws the case at supersample times
-  // its width and height, and each block of supersample x supersample pixels is averaged
-  // (box_filter in metrics.hpp) into the pixel of the reference's size that the metrics compare.
+  // its width and height, and each block of supersample x supersample pixels is averaged into the
+  // pixel of the reference's size (box_filter in metrics.hpp; for the metrics the block's sea
+  // alone at a sea pixel, supersampled_for_comparison).
   // It measures the method at the resolution a user renders at (the suite's images are sized for
   // the reference's cost): which waves a pixel resolves, and the grid's cells (ocean.grid_cell is
   // in pixels), follow the pixel. Its frame time is the larger image's. 1 for the reference.
