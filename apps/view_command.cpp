@@ -533,8 +533,8 @@ int run_view(const ViewArgs& args) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window, &width, &height);
     if (width > 0 && height > 0) {
-      scene.image.width = std::min(width, 8192);
-      scene.image.height = std::min(height, 8192);
+      scene.image.width = std::min(width, kMaxImageSide);
+      scene.image.height = std::min(height, kMaxImageSide);
     }
     return scene;
   };

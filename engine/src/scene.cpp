@@ -169,10 +169,10 @@ constexpr std::string_view kUtcFormat = "ISO 8601 UTC time YYYY-MM-DDTHH:MM:SS[.
 const std::vector<KeyDesc>& key_table() {
   using S = Scene;
   static const std::vector<KeyDesc> table = {
-      integer<&S::image, &ImageSettings::width>("image.width", {1, 8192}, "pixels", "960",
+      integer<&S::image, &ImageSettings::width>("image.width", {1, kMaxImageSide}, "pixels", "960",
                                                 "Width of the rendered image."),
-      integer<&S::image, &ImageSettings::height>("image.height", {1, 8192}, "pixels", "540",
-                                                 "Height of the rendered image."),
+      integer<&S::image, &ImageSettings::height>("image.height", {1, kMaxImageSide}, "pixels",
+                                                 "540", "Height of the rendered image."),
       number<&S::image, &ImageSettings::exposure>(
           "image.exposure", {0, 1e6, true}, "1/(W m^-2 sr^-1 nm^-1)", "10",
           "Scale of radiance before the PNG tone curve 1 - exp(-exposure * L); the EXR is not "

@@ -384,18 +384,19 @@ Suite load_suite_text(std::string_view json_text, std::string_view source,
     for (const char* key : {"width", "height"})
       if (!t.contains(key))
         fail(source, std::string("timing.") + key, "the timed frames' size in pixels", "none");
-    suite.timing.width = integer_at(t["width"], source, "timing.width", 1, 8192);
-    suite.timing.height = integer_at(t["height"], source, "timing.height", 1, 8192);
+    suite.timing.width = integer_at(t["width"], source, "timing.width", 1, kMaxImageSide);
+    suite.timing.height = integer_at(t["height"], source, "timing.height", 1, kMaxImageSide);
     if (t.contains("frames"))
       suite.timing.frames = integer_at(t["frames"], source, "timing.frames", 1, 100);
     // A supersampled method is timed at its multiple of the size (runner.cpp), which must be an
     // image the scene allows.
     for (const SuiteMethod& m : suite.methods) {
       const int most = std::max(suite.timing.width, suite.timing.height) * m.supersample;
-      if (most > 8192)
+      if (most > kMaxImageSide)
         fail(source, "timing",
              "a size that " + method_key(suite, m) + ".supersample (" +
-                 std::to_string(m.supersample) + ") keeps within 8192 pixels a side",
+                 std::to_string(m.supersample) + ") keeps within " + std::to_string(kMaxImageSide) +
+                 " pixels a side",
              std::to_string(suite.timing.width) + "x" + std::to_string(suite.timing.height));
     }
   }

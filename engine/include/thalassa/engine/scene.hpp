@@ -32,9 +32,13 @@ enum class ExrPixelType { Half, Float };
 enum class PlanetShape { Wgs84, Sphere };
 enum class WaveSpectrum { PiersonMoskowitz, OmegaMinus2 };
 
+// The largest image side a scene allows (image.width, image.height), pixels: the scene's check,
+// and the sizes other inputs lead to (a window's framebuffer, a suite's supersampled methods).
+inline constexpr int kMaxImageSide = 8192;
+
 struct ImageSettings {
-  int width = 960;                             // pixels, [1, 8192]
-  int height = 540;                            // pixels, [1, 8192]
+  int width = 960;                             // pixels, [1, kMaxImageSide]
+  int height = 540;                            // pixels, [1, kMaxImageSide]
   double exposure = 10.0;                      // 1 / (W m^-2 sr^-1 nm^-1), (0, 1e6]; docs/scene.md
   ExrPixelType exr_type = ExrPixelType::Half;  // "half" or "float"
 };
