@@ -20,6 +20,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// An empty folder of the test's own, with its images/ folder: the backends' runs of a test may
+// run at once.
+fs::path fresh_folder(const std::string& stem) {
+  const fs::path dir = fs::temp_directory_path() / (stem + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "images");
+  return dir;
+}
+
 TEST(CaseRunner, RendersMeasuresAndTellsItsProgressAsCounted) {
   const validation::Suite suite = validation::load_suite_text(R"({
     "suite": "runner",
@@ -36,11 +45,7 @@ TEST(CaseRunner, RendersMeasuresAndTellsItsProgressAsCounted) {
                "error": "no_such_sky.exr"}]
   })",
                                                               "runner.json");
-  // Its own folder: the backends' runs of this test may run at once.
-  const fs::path dir =
-      fs::temp_directory_path() / ("thalassa_case_runner_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "images");
+  const fs::path dir = fresh_folder("thalassa_case_runner_test");
   auto context = test::make_test_context();
   int done = 0, skipped = 0;
   validation::CaseRunOptions options;
@@ -125,10 +130,7 @@ TEST(CaseRunner, SupersampledMethodIsItsLargerRenderAveragedToTheReferencesPixel
     "cases": [{"name": "near", "set": {}}]
   })",
                                                               "supersample.json");
-  const fs::path dir =
-      fs::temp_directory_path() / ("thalassa_case_runner_x2_test_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir / "images");
+  const fs::path dir = fresh_folder("thalassa_case_runner_x2_test");
   auto context = test::make_test_context();
   std::vector<std::string> details;
   validation::CaseRunOptions options;

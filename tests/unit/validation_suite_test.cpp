@@ -32,6 +32,15 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
+// The default suite's 10 m/s cases, in its order: the cases crosswind.json and resolution.json
+// draw again.
+std::vector<const SuiteCase*> wind10_cases(const Suite& suite) {
+  std::vector<const SuiteCase*> wind10;
+  for (const SuiteCase& c : suite.cases)
+    if (c.name.starts_with("wind10_")) wind10.push_back(&c);
+  return wind10;
+}
+
 // The message of the SuiteError that loading `text` as "t.json" throws ("" when it loads).
 std::string error_of(const std::string& text) {
   try {
@@ -248,9 +257,7 @@ TEST(ValidationSuite, CrosswindIsTheDefaultSuitesWindTenAcrossTheView) {
   ASSERT_EQ(cross.methods.size(), 4u);
   for (const char* name : {"reference", "basic", "full", "full_nine_samples"})
     ASSERT_NE(cross.find_method(name), nullptr) << name;
-  std::vector<const SuiteCase*> wind10;
-  for (const SuiteCase& c : suite.cases)
-    if (c.name.starts_with("wind10_")) wind10.push_back(&c);
+  const std::vector<const SuiteCase*> wind10 = wind10_cases(suite);
   ASSERT_EQ(cross.cases.size(), wind10.size());
   ASSERT_EQ(wind10.size(), 8u);
   for (std::size_t i = 0; i < wind10.size(); ++i) {
@@ -295,9 +302,7 @@ TEST(ValidationSuite, ResolutionIsTheDefaultSuitesWindTenAtMultiplesOfItsPixels)
                  {"full_sky_lobe_x4", "full_sky_lobe", 4},
                  {"full_sky_lobe_x8", "full_sky_lobe", 8}};
   ASSERT_EQ(resolution.methods.size(), std::size(methods));
-  std::vector<const SuiteCase*> wind10;
-  for (const SuiteCase& c : suite.cases)
-    if (c.name.starts_with("wind10_")) wind10.push_back(&c);
+  const std::vector<const SuiteCase*> wind10 = wind10_cases(suite);
   ASSERT_EQ(wind10.size(), 8u);
   ASSERT_EQ(resolution.cases.size(), wind10.size());
   for (const auto& expected : methods) {
