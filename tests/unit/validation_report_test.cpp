@@ -145,7 +145,7 @@ Report synthetic_report() {
   double seed = 1.0;
   for (const auto& m : methods) {
     MethodResult r{m.name, m.method, m.plain, {}, {}};
-    if (m.name == "full_cell4") r.supersample = 3;  // read back as written (stop 53)
+    if (r.name == "full_cell4") r.supersample = 3;  // read back as written (stop 53)
     for (const char* term : {"sun", "all"}) {
       TermResult t;
       t.term = term;
