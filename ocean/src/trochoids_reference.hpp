@@ -1,5 +1,6 @@
 // Double-precision CPU reference of one trochoid wave train of the Bruneton et al. 2010 ocean: the
-// functions of shaders/ocean/trochoids.glsl compiled as C++ (Number = double, vec2/vec3 =
+// functions of shaders/ocean/trochoids.glsl (and of shaders/ocean/parallax.glsl, the parallax of
+// the waves drawn in the normals alone) compiled as C++ (Number = double, vec2/vec3 =
 // glm::dvec2/dvec3) in namespace thalassa::glsl, e.g. thalassa::glsl::TrochoidDisplacement(
 // direction, amplitude, argument). Frames, units and sources are documented in the .glsl file.
 // Header-only; needs shaders/ on the include path. Like every user of common/glsl_cpp.hpp, a file
@@ -18,6 +19,7 @@
 #pragma GCC diagnostic ignored "-Wunused-function"
 namespace thalassa::glsl {
 namespace {
+#include "ocean/parallax.glsl"
 #include "ocean/trochoids.glsl"
 }  // namespace
 }  // namespace thalassa::glsl
