@@ -277,6 +277,13 @@ const std::vector<KeyDesc>& key_table() {
           "(eq. 27) or that of the visible facets' mean slope weighted by their Fresnel "
           "reflectance, which eq. 21's product of averages leaves out "
           "(docs/ocean_fresnel.md)."),
+      integer<&S::ocean, &OceanSettings::parallax_iterations>(
+          "ocean.parallax_iterations", {0, 8}, "", "0",
+          "Fixed-point steps of the parallax of the waves drawn in the normals alone (longer than "
+          "a pixel, shorter than the grid's cells): each pixel takes their normals where its ray "
+          "meets them, so that it sees their facets in proportion to their projected area, as "
+          "the true surface shows them (0: none, the paper's normal mapping; 2 at resolutions of "
+          "1024 x 576 and above; docs/ocean_fresnel.md)."),
 
       choice<&S::sky, &SkySettings::model>("sky.model", {"atmosphere"}, "\"atmosphere\"",
                                            "Sky model used when sky.exr is empty."),

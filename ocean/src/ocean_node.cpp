@@ -272,6 +272,8 @@ class OceanNode final : public gl::Node {
                                      "ocean.projected_grid", "ocean.backstop", "ocean.ross_brdf"};
     if (options_.method != OceanMethod::full)
       list.push_back("ocean.method." + std::string(method_name(options_.method)));
+    if (parallax())
+      list.push_back("ocean.parallax." + std::to_string(options_.settings.parallax_iterations));
     if (options_.sun_glint) list.push_back("ocean.sun_glint");
     if (options_.sky)
       list.push_back(options_.sky_shrm           ? "ocean.sky_reflection.shrm"
@@ -614,7 +616,15 @@ class OceanNode final : public gl::Node {
   gl::Defines geometry_pass_defines() const {
     gl::Defines defines = method_defines();
     if (local_features_) local_features_->add_defines(defines);
+    if (parallax())
+      defines["PARALLAX_ITERATIONS"] = std::to_string(options_.settings.parallax_iterations);
     return defines;
+  }
+
+  // The parallax of the waves drawn in the normals alone (ocean/parallax.glsl): the scene's
+  // fixed-point steps, for every method but the reference, whose mesh holds every wave.
+  bool parallax() const {
+    return options_.settings.parallax_iterations > 0 && options_.method != OceanMethod::reference;
   }
 
   // The grid's cell (pixels): the scene's, or the reference's (one vertex per pixel by default:

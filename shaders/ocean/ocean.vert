@@ -18,6 +18,11 @@
 // size there, m, negated on the grid's outer ring (the skirt, ocean/src/ocean_node.cpp).
 layout(location = 0) in vec4 rest_and_cell;
 out vec3 rest_position;  // m, interpolated for the per-pixel normals of the fragment shader
+#ifdef PARALLAX_ITERATIONS
+// m: the grid's cell, for the fragment shader's w_p (ocean/parallax.glsl: which waves the mesh
+// holds and which the normals alone).
+out float grid_cell_size;
+#endif
 #ifdef METHOD_REFERENCE
 // m, nadir frame: the displaced point, whose screen derivatives give the rasterised triangle's
 // area for the reference's sample weights (ocean/visible_area_weight.glsl).
@@ -66,6 +71,9 @@ void main() {
   const vec3 d = p - FrameCameraPosition();
   gl_Position = FrameClipPosition(d, OCEAN_NEAR_PLANE);
   rest_position = x;
+#ifdef PARALLAX_ITERATIONS
+  grid_cell_size = cell;
+#endif
 #ifdef METHOD_REFERENCE
   mesh_position = p;
 #endif

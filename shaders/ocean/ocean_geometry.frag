@@ -5,7 +5,9 @@
 // variance (eq. 4, w_r = 1 - w_n). Both go to a G-buffer that ocean_lighting.frag shades.
 //
 // METHOD_BASIC, METHOD_NORMALS and METHOD_REFERENCE select the methods the validation compares
-// with it (ocean/method.hpp; issue 6, paper sec. 7.2, fig. 10).
+// with it (ocean/method.hpp; issue 6, paper sec. 7.2, fig. 10). PARALLAX_ITERATIONS
+// (ocean.parallax_iterations) takes the normals of the waves drawn in the normals alone where the
+// pixel's ray meets them (ocean/parallax.glsl).
 //
 // With BACKSTOP the same shader runs as a full-screen pass after the grid, on the pixels the
 // grid left uncovered (depth test EQUAL to the cleared far depth): their rest position is where
@@ -15,6 +17,7 @@
 #include "common/definitions.glsl"
 #include "common/frame.glsl"
 #include "ocean/trochoids.glsl"
+#include "ocean/parallax.glsl"
 #ifdef CALM_AREAS
 #include "ocean/calm_area.glsl"
 #endif
@@ -28,6 +31,9 @@
 layout(early_fragment_tests) in;
 #else
 in vec3 rest_position;  // m, on the sea at rest, nadir frame (ocean.vert)
+#ifdef PARALLAX_ITERATIONS
+in float grid_cell_size;  // m (ocean.vert)
+#endif
 #ifdef METHOD_REFERENCE
 in vec3 mesh_position;  // m, the rasterised (displaced) triangle's point, nadir frame (ocean.vert)
 #endif
@@ -97,7 +103,13 @@ void main() {
 #endif
 
   // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
-  // longest first, so w_n falls with the index and the loop ends at the first unresolved wave.
+  // longest first, so w_n falls with the index and the loops end at the first unresolved wave.
+  // Each wave's normal is taken at the mesh's rest position x with the weight w_mesh and, with
+  // PARALLAX_ITERATIONS, at the rest position x + shift that the pixel's ray sees once the
+  // waves drawn in the normals alone are lifted onto the mesh, with w_n - w_mesh
+  // (ocean/parallax.glsl). w_mesh is the mesh's own share, min(w_p, w_n) (w_p of the grid's cell,
+  // as ocean.vert); without parallax it is w_n, every normal is taken at x, and the sums are the
+  // paper's eq. 3 term for term.
   const vec2 crosswind = vec2(-downwind.y, downwind.x);
   vec3 d_dx = vec3(1.0, 0.0, 0.0);
   vec3 d_dy = vec3(0.0, 1.0, 0.0);
@@ -108,24 +120,83 @@ void main() {
 #else
   const float calm = 1.0;
 #endif
+#if defined(PARALLAX_ITERATIONS) && !defined(BACKSTOP) && !defined(METHOD_REFERENCE)
+  const float mesh_cell = grid_cell_size;  // m
+#define OCEAN_PARALLAX
+#else
+  // The backstop's surface is the sea at rest, and the reference's mesh holds every wave: their
+  // normals are all taken at x.
+  const float mesh_cell = footprint;
+#endif
+  // The waves the mesh holds whole (w_mesh = 1) come first; from first_partial on, the normal
+  // and the variance loop below takes the rest.
+  int first_partial = wave_count;
   for (int i = 0; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
 #ifdef METHOD_REFERENCE
-    const float w_n = 1.0;  // every wave's normal, exactly at the sample (issue 6's reference)
+    const float w_mesh = 1.0;  // every wave's normal, exactly at the sample (issue 6's reference)
 #else
     const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
+    const float w_mesh =
+        min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
 #endif
+    if (w_mesh < 1.0 && first_partial == wave_count) first_partial = i;
+    if (w_mesh <= 0.0) break;
+    const vec2 direction = vec2(a.x, a.y);
+    vec3 wave_dx, wave_dy;
+    TrochoidDisplacementDerivatives(direction, a.z, a.w,
+                                    TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
+    d_dx += w_mesh * calm * wave_dx;
+    d_dy += w_mesh * calm * wave_dy;
+  }
+  vec2 shift = vec2(0.0);  // m, rest tangent frame
+#ifdef OCEAN_PARALLAX
+  {
+    // The ray in the rest tangent frame where it meets the sea at rest (as the normal's frame
+    // below); the mesh's tangents are the geometry's share of eq. 3 just summed.
+    const float ray_distance = FrameSeaDistance(ray);
+    const vec3 ray_point = ray_distance >= 0.0 ? FrameCameraPosition() + ray_distance * ray : x;
+    const vec3 ray_t = transpose(FrameSeaTangentFrame(ray_point)) * ray;
+    for (int iteration = 0; iteration < PARALLAX_ITERATIONS; ++iteration) {
+      vec3 displacement = vec3(0.0);  // m: the normal-mapped waves' eq. 2 at x + shift
+      for (int i = first_partial; i < wave_count; ++i) {
+        const vec4 a = waves[2 * i];
+        const vec4 b = waves[2 * i + 1];
+        const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
+        if (w_n <= 0.0) break;
+        const float w_mesh =
+            min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+        const vec2 direction = vec2(a.x, a.y);
+        displacement += (w_n - w_mesh) * TrochoidDisplacement(
+                                             direction, a.w,
+                                             TrochoidArgument(a.z * direction, b.x, x.xy + shift));
+      }
+      shift = OceanParallaxShift(d_dx, d_dy, ray_t, calm * displacement);
+    }
+  }
+#endif
+  for (int i = first_partial; i < wave_count; ++i) {
+    const vec4 a = waves[2 * i];
+    const vec4 b = waves[2 * i + 1];
+    const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
     if (w_n <= 0.0) {
       first_unresolved = i;
       break;
     }
     const vec2 direction = vec2(a.x, a.y);
-    vec3 wave_dx, wave_dy;
-    TrochoidDisplacementDerivatives(direction, a.z, a.w,
-                                    TrochoidArgument(a.z * direction, b.x, x.xy), wave_dx, wave_dy);
-    d_dx += w_n * calm * wave_dx;
-    d_dy += w_n * calm * wave_dy;
+#ifdef OCEAN_PARALLAX
+    const float w_shifted =
+        w_n - min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+    if (w_shifted > 0.0) {
+      vec3 wave_dx, wave_dy;
+      TrochoidDisplacementDerivatives(direction, a.z, a.w,
+                                      TrochoidArgument(a.z * direction, b.x, x.xy + shift),
+                                      wave_dx, wave_dy);
+      d_dx += w_shifted * calm * wave_dx;
+      d_dy += w_shifted * calm * wave_dy;
+    }
+#endif
     if (w_n < 1.0) {
       const float variance = TrochoidSlopeVariance(a.z * (1.0 - w_n) * calm * a.w);
       const float along = dot(direction, downwind);

@@ -114,6 +114,8 @@ const FurnaceView kFurnaceViews[] = {
      R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"effective_fresnel": "table", "wind_speed": 40, "lambda_max": 1000}})"},
     {"surface_horizon_sky_lobe",
      R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"sky_lobe_centre": "fresnel_weighted", "effective_fresnel": "table", "wind_speed": 40, "lambda_max": 1000}})"},
+    {"surface_horizon_parallax",
+     R"({"camera": {"pitch": -3, "height": 4}, "ocean": {"parallax_iterations": 8, "wind_speed": 40, "lambda_max": 1000}})"},
     {"surface_19_km_sky_lobe",
      R"({"camera": {"pitch": -20, "height": 19000}, "ocean": {"sky_lobe_centre": "fresnel_weighted"}})"},
     {"surface_19_km", R"({"camera": {"pitch": -20, "height": 19000}})"},

@@ -136,6 +136,43 @@ TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
   }
 }
 
+// The parallax of the waves drawn in the normals alone (ocean.parallax_iterations,
+// ocean/parallax.glsl): at a user's resolution those waves are the ones between about a pixel and
+// a grid cell, and without parallax the pixels read their facets uniformly in rest area, which
+// over-reads the facets tilted away from the eye. A grid of 1-pixel cells draws most of them as
+// geometry, whose rasterisation sees each facet by its projected area: the proxy the parallax is
+// measured against here (no reference needed). The view from 100 m over the 10 m/s sea, sky term
+// alone, 480 x 320; the third of the rows nearest the camera. Measured: without parallax 1.0685 of
+// the 1-pixel grid's total, with 1 step 0.9933, with 2 steps 0.9925.
+TEST(OceanMethods, ParallaxSeesTheNormalMappedFacetsAsAFinerGridDoes) {
+  auto context = test::make_test_context();
+  Scene scene = validation_scene(100.0);
+  scene.image.width = 480;
+  scene.image.height = 320;
+  const LightTerms sky{false, true, false, false};
+  auto near_total = [&](double grid_cell, int steps) {
+    scene.ocean.grid_cell = grid_cell;
+    scene.ocean.parallax_iterations = steps;
+    const Image image = render(*context, scene, ocean::OceanMethod::full, sky).image;
+    double total = 0.0;
+    for (int y = 0; y < scene.image.height / 3; ++y)
+      total += row_total(image, y);  // from the bottom
+    for (float v : image.rgba) EXPECT_TRUE(std::isfinite(v));
+    return total;
+  };
+  const double fine = near_total(1.0, 0);
+  const double plain = near_total(8.0, 0);
+  const double one = near_total(8.0, 1);
+  const double two = near_total(8.0, 2);
+  std::printf(
+      "sky, 100 m, 480 x 320, the nearest third of the rows against 1-pixel cells: "
+      "cells of 8 %.4f, with parallax of 1 step %.4f, 2 steps %.4f\n",
+      plain / fine, one / fine, two / fine);
+  EXPECT_GT(plain / fine, 1.04);  // the bias the parallax is for
+  EXPECT_LT(std::abs(two / fine - 1.0), 0.35 * std::abs(plain / fine - 1.0));
+  EXPECT_LT(std::abs(one / fine - 1.0), 0.5 * std::abs(plain / fine - 1.0));
+}
+
 // ReferenceSampling::fixed_samples draws max_samples whatever the rows do, at the sample points
 // of a render that converged there: `thalassa validate` renders the reference's later flicker
 // frames so, to difference the sea's motion rather than two estimates' noise. A render held to

@@ -666,6 +666,7 @@ TEST(SceneKeys, ListsEveryKeyOnce) {
                                           "ocean.lambda_max",
                                           "ocean.seed",
                                           "ocean.n_min",
+                                          "ocean.parallax_iterations",
                                           "ocean.n_max",
                                           "ocean.grid_cell",
                                           "ocean.fresnel_r",

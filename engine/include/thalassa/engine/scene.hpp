@@ -96,6 +96,9 @@ struct OceanSettings {
   // normal) or "fresnel_weighted" (the visible facets' Fresnel-weighted mean slope;
   // ocean_fresnel.md).
   std::string sky_lobe_centre = "mirror";
+  // Fixed-point steps of the parallax of the waves drawn in the normals alone, [0, 8]; 0: none,
+  // the paper's normal mapping (shaders/ocean/parallax.glsl, docs/ocean_fresnel.md).
+  int parallax_iterations = 0;
   bool operator==(const OceanSettings&) const = default;
 };
 
