@@ -281,7 +281,8 @@ TEST(ValidationSuite, CrosswindIsTheDefaultSuitesWindTenAcrossTheView) {
 
 // data/suites/resolution.json (stop 53) draws the default suite's 10 m/s cases with its full and
 // full_sky_lobe at several multiples of the reference's pixels: each variant's scene is the default
-// suite's method's, key for key, at its multiple of the size (and full_x8_cell2's grid cells 2).
+// suite's method's, key for key, at its multiple of the size (and full_x8_cell2's grid cells 2,
+// full_parallax2's and full_x8_parallax2's 2 parallax steps, stop 54).
 TEST(ValidationSuite, ResolutionIsTheDefaultSuitesWindTenAtMultiplesOfItsPixels) {
   const Suite resolution =
       load_suite_file(std::string(THALASSA_SOURCE_DIR) + "/data/suites/resolution.json");
@@ -292,15 +293,18 @@ TEST(ValidationSuite, ResolutionIsTheDefaultSuitesWindTenAtMultiplesOfItsPixels)
     const char* name;
     const char* as;  // the default suite's method it draws
     int supersample;
-  } methods[] = {{"reference", "reference", 1},
-                 {"full", "full", 1},
-                 {"full_x2", "full", 2},
-                 {"full_x4", "full", 4},
-                 {"full_x8", "full", 8},
-                 {"full_x8_cell2", "full", 8},
-                 {"full_sky_lobe", "full_sky_lobe", 1},
-                 {"full_sky_lobe_x4", "full_sky_lobe", 4},
-                 {"full_sky_lobe_x8", "full_sky_lobe", 8}};
+    const char* extra;  // the one assignment it adds to the default suite's method, or null
+  } methods[] = {{"reference", "reference", 1, nullptr},
+                 {"full", "full", 1, nullptr},
+                 {"full_x2", "full", 2, nullptr},
+                 {"full_x4", "full", 4, nullptr},
+                 {"full_x8", "full", 8, nullptr},
+                 {"full_x8_cell2", "full", 8, "ocean.grid_cell=2"},
+                 {"full_parallax2", "full", 1, "ocean.parallax_iterations=2"},
+                 {"full_x8_parallax2", "full", 8, "ocean.parallax_iterations=2"},
+                 {"full_sky_lobe", "full_sky_lobe", 1, nullptr},
+                 {"full_sky_lobe_x4", "full_sky_lobe", 4, nullptr},
+                 {"full_sky_lobe_x8", "full_sky_lobe", 8, nullptr}};
   ASSERT_EQ(resolution.methods.size(), std::size(methods));
   const std::vector<const SuiteCase*> wind10 = wind10_cases(suite);
   ASSERT_EQ(wind10.size(), 8u);
@@ -315,8 +319,9 @@ TEST(ValidationSuite, ResolutionIsTheDefaultSuitesWindTenAtMultiplesOfItsPixels)
       EXPECT_EQ(resolution.cases[i].name, wind10[i]->name);
       std::vector<std::string> set = case_assignments(resolution, resolution.cases[i], m);
       std::vector<std::string> default_set = case_assignments(suite, *wind10[i], own);
-      if (std::string(expected.name) == "full_x8_cell2") {
-        EXPECT_EQ(set.back(), "ocean.grid_cell=2");
+      if (expected.extra) {
+        ASSERT_FALSE(set.empty()) << expected.name;
+        EXPECT_EQ(set.back(), expected.extra) << expected.name;
         set.pop_back();
       }
       EXPECT_EQ(set, default_set) << expected.name << " " << wind10[i]->name;
