@@ -158,21 +158,34 @@ void main() {
     const float ray_distance = FrameSeaDistance(ray);
     const vec3 ray_point = ray_distance >= 0.0 ? FrameCameraPosition() + ray_distance * ray : x;
     const vec3 ray_t = transpose(FrameSeaTangentFrame(ray_point)) * ray;
+    // The view's azimuth, along which the waves' slopes fold the map (OceanParallaxFade).
+    const float ray_horizontal = length(ray_t.xy);
+    const vec2 azimuth = ray_horizontal > 0.0 ? ray_t.xy / ray_horizontal : vec2(0.0);
+    float fade = 0.0;
     for (int iteration = 0; iteration < PARALLAX_ITERATIONS; ++iteration) {
       vec3 displacement = vec3(0.0);  // m: the normal-mapped waves' eq. 2 at x + shift
+      float view_variance = 0.0;      // their slope variance along the azimuth (first step)
       for (int i = first_partial; i < wave_count; ++i) {
         const vec4 a = waves[2 * i];
         const vec4 b = waves[2 * i + 1];
         const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
         if (w_n <= 0.0) break;
-        const float w_mesh =
-            min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+        const float w_shifted =
+            w_n - min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
         const vec2 direction = vec2(a.x, a.y);
-        displacement += (w_n - w_mesh) * TrochoidDisplacement(
-                                             direction, a.w,
+        displacement +=
+            w_shifted * TrochoidDisplacement(direction, a.w,
                                              TrochoidArgument(a.z * direction, b.x, x.xy + shift));
+        if (iteration == 0) {
+          const float along = dot(direction, azimuth);
+          view_variance += TrochoidSlopeVariance(a.z * w_shifted * calm * a.w) * along * along;
+        }
       }
-      shift = OceanParallaxShift(d_dx, d_dy, ray_t, calm * displacement);
+      if (iteration == 0) {
+        fade = OceanParallaxFade(view_variance, cross(d_dx, d_dy), ray_t);
+        if (fade <= 0.0) break;  // the shift stays 0
+      }
+      shift = fade * OceanParallaxShift(d_dx, d_dy, ray_t, calm * displacement);
     }
   }
 #endif

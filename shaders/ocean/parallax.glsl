@@ -26,7 +26,7 @@
 // facets in proportion to their projected area: the identity tests/unit/parallax_test.cpp
 // checks. Masking beyond the fixed point's reach (facets hidden behind a crest, where the map
 // folds) is not resolved: the iteration stays bounded there (|s| <= |D| / (v.N_mesh) times a
-// constant) but lands on any of the folds' branches.
+// constant) but lands on any of the folds' branches, so the shift fades out there (below).
 
 #ifndef THALASSA_OCEAN_PARALLAX_GLSL
 #define THALASSA_OCEAN_PARALLAX_GLSL
@@ -56,6 +56,38 @@ vec2 OceanParallaxShift(IN(vec3) mesh_dx, IN(vec3) mesh_dy, IN(vec3) ray, IN(vec
   Number s_x = dot(b, cross(mesh_dy, -ray)) / det;
   Number s_y = dot(mesh_dx, cross(b, -ray)) / det;
   return vec2(s_x, s_y);
+}
+
+// THE FADE. Where the waves' slope times the cotangent nears 1 the map folds, and the fixed
+// point lands on any branch of the fold: a different one from frame to frame as the waves move
+// (the default scene from 4 m at 1280 x 720, 0.3-5 degrees below the horizon, changed between
+// frames 1/30 s apart 1.56 times as much as without parallax; OceanMethods.
+// ParallaxDoesNotFlickerWhereTheWavesFoldTheView). The shift is therefore scaled by a fade of
+// q = sigma_v cot theta, sigma_v^2 the normal-mapped waves' slope variance along the view's
+// azimuth and theta the grazing angle over the mesh: 1 up to q = 0.4, where 1.2 % of Gaussian
+// slopes fold (2 Phi(-1 / q)), falling linearly to 0 at q = 0.8, where 21 % do. The solve is
+// linear in D, so a faded shift is the shift of the waves' displacements times the fade.
+const Number OCEAN_PARALLAX_FADE_START = 0.4;
+const Number OCEAN_PARALLAX_FADE_END = 0.8;
+
+// The fade above (dimensionless, in [0, 1]) for view_slope_variance sigma_v^2 (the normal-mapped
+// waves' slope variance along the view's azimuth), the mesh's area vector mesh_area (mesh_dx x
+// mesh_dy, any length) and the unit ray from the eye (both in the rest tangent frame). 0 where
+// the mesh is seen edge-on or from behind, or for a NaN input.
+Number OceanParallaxFade(IN(Number) view_slope_variance, IN(vec3) mesh_area, IN(vec3) ray) {
+  Number area = length(mesh_area);
+  if (!(area > 0.0)) {
+    return 0.0;
+  }
+  Number sin_grazing = -dot(ray, mesh_area) / area;
+  if (!(sin_grazing > OCEAN_PARALLAX_MIN_MESH_COS)) {
+    return 0.0;
+  }
+  Number cot_grazing = sqrt(max(1.0 - sin_grazing * sin_grazing, 0.0)) / sin_grazing;
+  Number q = sqrt(max(view_slope_variance, 0.0)) * cot_grazing;
+  Number fade =
+      (OCEAN_PARALLAX_FADE_END - q) / (OCEAN_PARALLAX_FADE_END - OCEAN_PARALLAX_FADE_START);
+  return fade >= 0.0 ? min(fade, 1.0) : 0.0;  // 0 for a NaN q as well
 }
 
 #endif  // THALASSA_OCEAN_PARALLAX_GLSL

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -36,8 +37,8 @@ Render render(GlContext& context, const Scene& scene, ocean::OceanMethod method,
   return {renderer.image(), renderer.stats()};
 }
 
-// The total of image row y (from the bottom) in the green channel (the sea's rows as fig. 10 sums
-// them).
+// The total of image row y (rows top first, as Image holds them) in the green channel (the sea's
+// rows as fig. 10 sums them).
 double row_total(const Image& image, int y) {
   double sum = 0.0;
   for (int x = 0; x < image.width; ++x)
@@ -82,13 +83,15 @@ TEST(OceanMethods, ReferenceSkyAndSeaConverge) {
 // "shrm", whose lobe moves to the centre's mirror direction since stop 39): the view from 100 m
 // whose top row is 1 degree below the horizon (0.75 degree a row), the sky term alone, against the
 // reference at 64 samples. Measured with textureGrad: row error 0.112 (mirror) and 0.041 (lobe);
-// the 12 rows nearest the camera together 0.833 and 0.949 of the reference (before stop 51's
+// the 12 rows at the top, 1 to 10 degrees below the horizon, together 0.833 and 0.949 of the
+// reference (this test called them the nearest the camera until stop 54, but Image's rows run
+// top first; before stop 51's
 // seamless filter 0.143 and 0.045, 0.775 and 0.942, rows 0.69-0.90 and 0.92-0.98); but (stop
 // 37) the 6 rows nearest the horizon 0.93-1.10 and 1.01-1.19, with the sun 35 degrees high ahead:
 // there the lobe's shape (eq. 27's width about the new centre) still errs. With shrm,
 // whose maps blur as if seen along the normal and make the slopes isotropic
 // (docs/spherical_harmonics.md), the sky is darker and the centre helps less: row error 0.283
-// (mirror) and 0.227 (lobe), the 12 nearest rows 0.643 and 0.734 of the reference.
+// (mirror) and 0.227 (lobe), the 12 top rows 0.643 and 0.734 of the reference.
 TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(100.0);
@@ -97,7 +100,7 @@ TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
   scene.camera.pitch = -16.0;
   const LightTerms sky{false, true, false, false};
   const Render reference = render(*context, scene, ocean::OceanMethod::reference, sky, 64);
-  // The filter, and the most of the mirror lobe's error (over all rows; over the nearest 12) that
+  // The filter, and the most of the mirror lobe's error (over all rows; over the top 12) that
   // the centred lobe may keep: measured 0.31 and 0.26 (textureGrad), 0.80 and 0.75 (shrm).
   struct Case {
     const char* filter;
@@ -119,15 +122,15 @@ TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
       full_error += std::abs(f - r);
       lobe_error += std::abs(l - r);
       total += r;
-      if (y < 12) {  // image rows run from the bottom: the 12 nearest the camera
+      if (y < 12) {  // image rows run top first: the 12 nearest the horizon
         full_near += f;
         lobe_near += l;
         reference_near += r;
       }
     }
     std::printf(
-        "sky, 100 m, %s: row error mirror %.4f, lobe-centred %.4f; the 12 rows nearest the "
-        "camera %.3f and %.3f of the reference\n",
+        "sky, 100 m, %s: row error mirror %.4f, lobe-centred %.4f; the 12 rows at the top "
+        "(1-10 degrees below the horizon) %.3f and %.3f of the reference\n",
         c.filter, full_error / total, lobe_error / total, full_near / reference_near,
         lobe_near / reference_near);
     EXPECT_LT(lobe_error, c.row_error * full_error);
@@ -142,8 +145,9 @@ TEST(OceanMethods, SkyLobeCentreBringsTheSkyCloserToTheReference) {
 // over-reads the facets tilted away from the eye. A grid of 1-pixel cells draws most of them as
 // geometry, whose rasterisation sees each facet by its projected area: the proxy the parallax is
 // measured against here (no reference needed). The view from 100 m over the 10 m/s sea, sky term
-// alone, 480 x 320; the third of the rows nearest the camera. Measured: without parallax 1.0685 of
-// the 1-pixel grid's total, with 1 step 0.9933, with 2 steps 0.9925.
+// alone, 480 x 320; the third of the rows nearest the camera. Measured: without parallax 1.0620 of
+// the 1-pixel grid's total, with 1 step 1.0212, with 2 steps 1.0189: 30 % and 34 % of the excess
+// left (the 1-pixel grid hides facets behind crests, which the parallax does not).
 TEST(OceanMethods, ParallaxSeesTheNormalMappedFacetsAsAFinerGridDoes) {
   auto context = test::make_test_context();
   Scene scene = validation_scene(100.0);
@@ -155,8 +159,8 @@ TEST(OceanMethods, ParallaxSeesTheNormalMappedFacetsAsAFinerGridDoes) {
     scene.ocean.parallax_iterations = steps;
     const Image image = render(*context, scene, ocean::OceanMethod::full, sky).image;
     double total = 0.0;
-    for (int y = 0; y < scene.image.height / 3; ++y)
-      total += row_total(image, y);  // from the bottom
+    for (int y = scene.image.height - scene.image.height / 3; y < scene.image.height; ++y)
+      total += row_total(image, y);  // rows top first: the third nearest the camera
     for (float v : image.rgba) EXPECT_TRUE(std::isfinite(v));
     return total;
   };
@@ -169,8 +173,57 @@ TEST(OceanMethods, ParallaxSeesTheNormalMappedFacetsAsAFinerGridDoes) {
       "cells of 8 %.4f, with parallax of 1 step %.4f, 2 steps %.4f\n",
       plain / fine, one / fine, two / fine);
   EXPECT_GT(plain / fine, 1.04);  // the bias the parallax is for
-  EXPECT_LT(std::abs(two / fine - 1.0), 0.35 * std::abs(plain / fine - 1.0));
+  EXPECT_LT(std::abs(two / fine - 1.0), 0.4 * std::abs(plain / fine - 1.0));
   EXPECT_LT(std::abs(one / fine - 1.0), 0.5 * std::abs(plain / fine - 1.0));
+}
+
+// Near the horizon of a view from 4 m the normal-mapped waves fold the view (a facet hides the
+// next), where the parallax's fixed point lands on any branch of the fold, a different one from
+// frame to frame: without the fade (OceanParallaxFade) the default scene at 1280 x 720 changed
+// between frames 1/30 s apart 1.5 times as much 0.3-5 degrees below the horizon as without
+// parallax. With it the change there is the plain method's. The default scene (4 m, pitch -5
+// degrees, fov 45 degrees), every term, at 1280 x 720; the mean absolute change of the green
+// channel over its mean, in the rows 0.3 to 5 degrees below the horizontal, outside the sun's
+// glitter (the middle half of the columns). Measured: 0.0305 without parallax, 0.0297 with 2
+// steps, 0.0477 with 2 steps and no fade (a shader copy).
+TEST(OceanMethods, ParallaxDoesNotFlickerWhereTheWavesFoldTheView) {
+  auto context = test::make_test_context();
+  Scene scene = test::scene_from("{}");
+  scene.image.width = 1280;
+  scene.image.height = 720;
+  const LightTerms all{true, true, true, true};
+  // The image row (top first) of a direction `degrees` below the horizontal (the horizon's dip
+  // from 4 m is 0.06 degrees), by the pinhole's tangent.
+  const double half = std::tan(0.5 * scene.camera.fov_y * std::numbers::pi / 180.0);
+  auto row_below = [&](double degrees) {
+    const double t = std::tan((degrees + scene.camera.pitch) * std::numbers::pi / 180.0) / half;
+    return int(std::lround(0.5 * scene.image.height * (1.0 + t)));
+  };
+  const int top = row_below(0.3), bottom = row_below(5.0);
+  ASSERT_GT(bottom, top + 10);
+  auto change = [&](int steps) {
+    scene.ocean.parallax_iterations = steps;
+    scene.time = 0.0;
+    const Image a = render(*context, scene, ocean::OceanMethod::full, all).image;
+    scene.time = 1.0 / 30.0;
+    const Image b = render(*context, scene, ocean::OceanMethod::full, all).image;
+    double difference = 0.0, sum = 0.0;
+    for (int y = top; y < bottom; ++y)
+      for (int x = 0; x < scene.image.width; ++x) {
+        if (std::abs(x - scene.image.width / 2) < scene.image.width / 4) continue;  // the glitter
+        const std::size_t i = (std::size_t(y) * scene.image.width + x) * 4 + 1;
+        difference += std::abs(a.rgba[i] - b.rgba[i]);
+        sum += 0.5 * (a.rgba[i] + b.rgba[i]);
+      }
+    return difference / sum;
+  };
+  const double plain = change(0), parallax = change(2);
+  std::printf(
+      "4 m, 0.3-5 degrees below the horizon, change between frames 1/30 s apart: "
+      "%.4f without parallax, %.4f with 2 steps\n",
+      plain, parallax);
+  EXPECT_GT(plain, 0.0);
+  EXPECT_LT(parallax, 1.15 * plain);
 }
 
 // ReferenceSampling::fixed_samples draws max_samples whatever the rows do, at the sample points

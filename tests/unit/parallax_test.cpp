@@ -5,8 +5,9 @@
 // the eye, the visible-area weight the reference gives its samples
 // (shaders/ocean/visible_area_weight.glsl), so that the image's mean of any function of the
 // normal is that weighted mean and not the plain one; the shader's few fixed-point steps come
-// close to it; and the shift stays finite (zero) for a mesh seen edge-on, from behind or
-// degenerate. Frame: the sea's rest tangent frame (x east, y north, z up), metres.
+// close to it; the shift fades out where the waves begin to fold the view; and it stays finite
+// (zero) for a mesh seen edge-on, from behind or degenerate. Frame: the sea's rest tangent frame (x
+// east, y north, z up), metres.
 
 #include <algorithm>
 #include <cmath>
@@ -207,6 +208,48 @@ TEST(OceanParallax, AFewFixedPointStepsTakeMostOfTheWay) {
           << theta << " " << s;
     EXPECT_LT(std::abs(mean[2] / mean[5] - 1.0), 0.25 * std::abs(mean[0] / mean[5] - 1.0)) << theta;
   }
+}
+
+// The fade of q = sigma_v cot(grazing): 1 up to 0.4, 0 from 0.8, linear between; the sea of the
+// tests above is wholly inside the unfaded range at every view they take (q <= 0.21 at 20
+// degrees grazing).
+TEST(OceanParallax, TheShiftFadesWhereTheWavesBeginToFoldTheView) {
+  const vec3 up(0.0, 0.0, 1.0);
+  for (double grazing : {5.0, 20.0, 45.0, 80.0}) {
+    const double g = grazing * kPi / 180.0;
+    const vec3 ray(-std::cos(g), 0.0, -std::sin(g));
+    const double cot = 1.0 / std::tan(g);
+    auto fade_at = [&](double q) { return OceanParallaxFade((q / cot) * (q / cot), up, ray); };
+    EXPECT_NEAR(fade_at(0.0), 1.0, 1e-15) << grazing;
+    EXPECT_NEAR(fade_at(0.4), 1.0, 1e-12) << grazing;
+    EXPECT_NEAR(fade_at(0.5), 0.75, 1e-12) << grazing;
+    EXPECT_NEAR(fade_at(0.6), 0.5, 1e-12) << grazing;
+    EXPECT_NEAR(fade_at(0.8), 0.0, 1e-12) << grazing;
+    EXPECT_EQ(fade_at(3.0), 0.0) << grazing;
+    double last = 1.0;
+    for (double q = 0.0; q < 1.0; q += 0.01) {
+      EXPECT_LE(fade_at(q), last) << grazing << " " << q;
+      last = fade_at(q);
+    }
+  }
+  // The mesh's area vector of any length and tilt: q takes the grazing angle over the mesh.
+  const vec3 tilted = 3.0 * cross(kMeshes[1].dx, kMeshes[1].dy);
+  const vec3 ray = -UnitView(70.0, 0.0);
+  const double sin_grazing = -dot(ray, normalize(tilted));
+  const double cot = std::sqrt(1.0 - sin_grazing * sin_grazing) / sin_grazing;
+  EXPECT_NEAR(OceanParallaxFade((0.6 / cot) * (0.6 / cot), tilted, ray), 0.5, 1e-12);
+  // The identities' sea: its largest slope variance along any azimuth is below 0.0061
+  // (0.10^2 / 2 + 0.08^2 / 2 + 0.05^2 / 2, every wave along it), q below 0.215 at 20 degrees.
+  const double most = (0.10 * 0.10 + 0.08 * 0.08 + 0.05 * 0.05) / 2.0;
+  EXPECT_EQ(OceanParallaxFade(most, vec3(0.0, 0.0, 1.0), -UnitView(70.0, 0.0)), 1.0);
+  // Seen edge-on, from below, degenerate, or NaN: no shift.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(OceanParallaxFade(0.01, up, vec3(1.0, 0.0, 0.0)), 0.0);
+  EXPECT_EQ(OceanParallaxFade(0.01, up, vec3(0.0, 0.0, 1.0)), 0.0);
+  EXPECT_EQ(OceanParallaxFade(0.01, vec3(0.0), vec3(0.0, 0.0, -1.0)), 0.0);
+  EXPECT_EQ(OceanParallaxFade(nan, up, vec3(0.0, 0.0, -1.0)), 0.0);
+  EXPECT_EQ(OceanParallaxFade(0.0, up, vec3(0.0, 0.0, -1.0)), 1.0);   // straight down, any sea
+  EXPECT_EQ(OceanParallaxFade(-1.0, up, -UnitView(30.0, 0.0)), 1.0);  // no variance
 }
 
 TEST(OceanParallax, AMeshSeenEdgeOnFromBehindOrDegenerateKeepsItsRestPosition) {
