@@ -73,6 +73,28 @@ uniform vec2 constant_variance;
 #include "ocean/cell_slope_density.glsl"
 #include "ocean/reference_sun.glsl"
 #endif
+// The backstop's surface is the sea at rest, and the reference's mesh holds every wave: neither
+// takes the parallax.
+#if defined(PARALLAX_ITERATIONS) && !defined(BACKSTOP) && !defined(METHOD_REFERENCE)
+#define OCEAN_PARALLAX
+#endif
+
+// Eq. 3's w_n of a wave of this wavelength (m) at a pixel of this footprint (m).
+float NormalWeight(float wavelength, float footprint) {
+  return WaveFilterWeight(n_min, n_max, resolved_wave_scale * wavelength / footprint);
+}
+
+// The share w_mesh of a wave's normal taken at the mesh's rest position x: with OCEAN_PARALLAX
+// the mesh's own, min(w_p, w_n) (w_p of the grid's cell, as ocean.vert), the rest w_n - w_mesh
+// taken where the pixel's ray meets the waves (ocean/parallax.glsl); without it all of w_n.
+float MeshShare(float wavelength, float w_n) {
+#ifdef OCEAN_PARALLAX
+  return min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * wavelength / grid_cell_size),
+             w_n);
+#else
+  return w_n;
+#endif
+}
 
 void main() {
   const vec3 ray = FrameViewRay(gl_FragCoord.xy);
@@ -102,14 +124,35 @@ void main() {
   if (distance < 0.0) discard;  // the sky's pixel
 #endif
 
+  // The normal is summed in the tangent frame of the sea at rest and turned into the nadir frame
+  // (below), and the parallax takes the ray in that frame. That frame is the one where the
+  // pixel's ray meets the sea at rest, not at x: x is interpolated across the grid's triangles,
+  // chords of the curved sea, and a grazing ray meets a chord far from where it meets the sea (a chord of 170 km sags 0.57 km; seen 1 degree above it, the ray's meeting moves
+  // by 33 km and the rest normal turns by 5e-3 rad, a third of a 3 m/s sea's slope deviation).
+  // Where waves are displaced, x and the ray's meeting with the sea at rest part by the
+  // displacement over the grazing angle's tangent, which turns the frame by 1.6e-4 rad a
+  // kilometre: 3e-5 rad for a 0.3 m crest seen 0.1 degree above the sea. Measured on a 3 m/s sea
+  // seen from 8 km at 64 x 36, whose cells span 10 degrees, against the same view at 8 x 8 finer
+  // pixels (tests/gpu/method_test.cpp): in the rows 2.5 and 3.8 degrees below the horizon the sun
+  // went from 0.68 and 0.88 of it to 1.11 and 1.05 (the rest is the pixel's own average, whose
+  // factors of eq. 15 are the centre's while the grazing angle changes by half of itself across
+  // such a pixel), the reflected sky from 1.047 and 1.022 to 1.006 and 1.001. A ray that misses
+  // the sea at rest (a crest above the horizon) keeps x.
+#ifdef BACKSTOP
+  const vec3 x_frame = x;
+#else
+  const float frame_distance = FrameSeaDistance(ray);
+  const vec3 x_frame =
+      frame_distance >= 0.0 ? FrameCameraPosition() + frame_distance * ray : x;
+#endif
+  const mat3 rest_frame = FrameSeaTangentFrame(x_frame);
+
   // Eq. 3 with w_n, and the unresolved variance of eq. 4 with w_r = 1 - w_n: waves are sorted
   // longest first, so w_n falls with the index and the loops end at the first unresolved wave.
-  // Each wave's normal is taken at the mesh's rest position x with the weight w_mesh and, with
-  // PARALLAX_ITERATIONS, at the rest position x + shift that the pixel's ray sees once the
-  // waves drawn in the normals alone are lifted onto the mesh, with w_n - w_mesh
-  // (ocean/parallax.glsl). w_mesh is the mesh's own share, min(w_p, w_n) (w_p of the grid's cell,
-  // as ocean.vert); without parallax it is w_n, every normal is taken at x, and the sums are the
-  // paper's eq. 3 term for term.
+  // Each wave's normal is taken at the mesh's rest position x with the weight w_mesh (MeshShare)
+  // and, with OCEAN_PARALLAX, at the rest position x + shift that the pixel's ray sees once the
+  // waves drawn in the normals alone are lifted onto the mesh, with w_n - w_mesh. Without
+  // parallax every normal is taken at x, and the sums are the paper's eq. 3 term for term.
   const vec2 crosswind = vec2(-downwind.y, downwind.x);
   vec3 d_dx = vec3(1.0, 0.0, 0.0);
   vec3 d_dy = vec3(0.0, 1.0, 0.0);
@@ -120,14 +163,6 @@ void main() {
 #else
   const float calm = 1.0;
 #endif
-#if defined(PARALLAX_ITERATIONS) && !defined(BACKSTOP) && !defined(METHOD_REFERENCE)
-  const float mesh_cell = grid_cell_size;  // m
-#define OCEAN_PARALLAX
-#else
-  // The backstop's surface is the sea at rest, and the reference's mesh holds every wave: their
-  // normals are all taken at x.
-  const float mesh_cell = footprint;
-#endif
   // The waves the mesh holds whole (w_mesh = 1) come first; from first_partial on, the normal
   // and the variance loop below takes the rest.
   int first_partial = wave_count;
@@ -137,9 +172,7 @@ void main() {
 #ifdef METHOD_REFERENCE
     const float w_mesh = 1.0;  // every wave's normal, exactly at the sample (issue 6's reference)
 #else
-    const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
-    const float w_mesh =
-        min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+    const float w_mesh = MeshShare(b.y, NormalWeight(b.y, footprint));
 #endif
     if (w_mesh < 1.0 && first_partial == wave_count) first_partial = i;
     if (w_mesh <= 0.0) break;
@@ -153,11 +186,9 @@ void main() {
   vec2 shift = vec2(0.0);  // m, rest tangent frame
 #ifdef OCEAN_PARALLAX
   {
-    // The ray in the rest tangent frame where it meets the sea at rest (as the normal's frame
-    // below); the mesh's tangents are the geometry's share of eq. 3 just summed.
-    const float ray_distance = FrameSeaDistance(ray);
-    const vec3 ray_point = ray_distance >= 0.0 ? FrameCameraPosition() + ray_distance * ray : x;
-    const vec3 ray_t = transpose(FrameSeaTangentFrame(ray_point)) * ray;
+    // The ray in the rest tangent frame; the mesh's tangents are the geometry's share of eq. 3
+    // just summed.
+    const vec3 ray_t = transpose(rest_frame) * ray;
     // The view's azimuth, along which the waves' slopes fold the map (OceanParallaxFade).
     const float ray_horizontal = length(ray_t.xy);
     const vec2 azimuth = ray_horizontal > 0.0 ? ray_t.xy / ray_horizontal : vec2(0.0);
@@ -168,10 +199,9 @@ void main() {
       for (int i = first_partial; i < wave_count; ++i) {
         const vec4 a = waves[2 * i];
         const vec4 b = waves[2 * i + 1];
-        const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
+        const float w_n = NormalWeight(b.y, footprint);
         if (w_n <= 0.0) break;
-        const float w_shifted =
-            w_n - min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+        const float w_shifted = w_n - MeshShare(b.y, w_n);
         const vec2 direction = vec2(a.x, a.y);
         displacement +=
             w_shifted * TrochoidDisplacement(direction, a.w,
@@ -192,15 +222,14 @@ void main() {
   for (int i = first_partial; i < wave_count; ++i) {
     const vec4 a = waves[2 * i];
     const vec4 b = waves[2 * i + 1];
-    const float w_n = WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / footprint);
+    const float w_n = NormalWeight(b.y, footprint);
     if (w_n <= 0.0) {
       first_unresolved = i;
       break;
     }
     const vec2 direction = vec2(a.x, a.y);
 #ifdef OCEAN_PARALLAX
-    const float w_shifted =
-        w_n - min(WaveFilterWeight(n_min, n_max, resolved_wave_scale * b.y / mesh_cell), w_n);
+    const float w_shifted = w_n - MeshShare(b.y, w_n);
     if (w_shifted > 0.0) {
       vec3 wave_dx, wave_dy;
       TrochoidDisplacementDerivatives(direction, a.z, a.w,
@@ -222,30 +251,9 @@ void main() {
                     partial_variance);
 #endif
   const vec3 v = -ray;  // toward the eye
-  // The normal in the tangent frame of the sea at rest, turned into the nadir frame. That frame is
-  // the one where the pixel's ray meets the sea at rest, not at x: x is interpolated across the
-  // grid's triangles, chords of the curved sea, and a grazing ray meets a chord far from where it
-  // meets the sea (a chord of 170 km sags 0.57 km; seen 1 degree above it, the ray's meeting moves
-  // by 33 km and the rest normal turns by 5e-3 rad, a third of a 3 m/s sea's slope deviation).
-  // Where waves are displaced, x and the ray's meeting with the sea at rest part by the
-  // displacement over the grazing angle's tangent, which turns the frame by 1.6e-4 rad a
-  // kilometre: 3e-5 rad for a 0.3 m crest seen 0.1 degree above the sea. Measured on a 3 m/s sea
-  // seen from 8 km at 64 x 36, whose cells span 10 degrees, against the same view at 8 x 8 finer
-  // pixels (tests/gpu/method_test.cpp): in the rows 2.5 and 3.8 degrees below the horizon the sun
-  // went from 0.68 and 0.88 of it to 1.11 and 1.05 (the rest is the pixel's own average, whose
-  // factors of eq. 15 are the centre's while the grazing angle changes by half of itself across
-  // such a pixel), the reflected sky from 1.047 and 1.022 to 1.006 and 1.001. A ray that misses
-  // the sea at rest (a crest above the horizon) keeps x.
-#ifdef BACKSTOP
-  const vec3 x_frame = x;
-#else
-  const float frame_distance = FrameSeaDistance(ray);
-  const vec3 x_frame =
-      frame_distance >= 0.0 ? FrameCameraPosition() + frame_distance * ray : x;
-#endif
   const vec3 area_local = cross(d_dx, d_dy);  // displaced area per unit rest area
   const vec3 n_local = normalize(area_local);
-  vec3 n = FrameSeaTangentFrame(x_frame) * n_local;
+  vec3 n = rest_frame * n_local;  // the frame where the ray meets the sea at rest (above)
   // Sec. 3.2: a normal facing away from the viewer is reflected back toward it.
   if (dot(n, v) < 0.0) n = normalize(n - 2.0 * dot(n, v) * v);
   normal_out = vec4(n, 1.0);
